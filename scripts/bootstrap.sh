@@ -15,6 +15,9 @@ PKGS=(
   qemu-system-x86 linux-image-amd64 busybox-static cpio kmod
   python3 python3-numpy python3-scipy python3-venv
 )
+# FRAC_BOOTSTRAP_EXTRA: extra package names, used by the bootstrap's own test.
+# shellcheck disable=SC2206
+PKGS+=(${FRAC_BOOTSTRAP_EXTRA:-})
 missing=()
 for p in "${PKGS[@]}"; do
   st=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
