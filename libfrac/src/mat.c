@@ -1,0 +1,202 @@
+/*
+ * mat.c - small dense row-major linear algebra (frac/mat.h).
+ *
+ * The loops run over contiguous rows so that the inner products stream
+ * through memory; this is what lets a compiler vectorise them on a host
+ * and keeps a Cortex-M4F in its single-cycle load/MAC pattern.
+ */
+#include "frac/mat.h"
+
+#define DIM_OK(d) ((d) > 0 && (d) <= FRAC_MAT_MAX)
+
+int frac_mat_vec(const frac_real *M, size_t r, size_t c, const frac_real *x, frac_real *y)
+{
+    size_t i, j;
+    if (M == NULL || x == NULL || y == NULL) return FRAC_E_NULL;
+    if (!DIM_OK(r) || !DIM_OK(c)) return FRAC_E_DIM;
+    for (i = 0; i < r; i++) {
+        const frac_real *row = M + i * c;
+        frac_real s = FRAC_R(0.0);
+        for (j = 0; j < c; j++) s += row[j] * x[j];
+        y[i] = s;
+    }
+    return FRAC_OK;
+}
+
+int frac_mat_vec_add(const frac_real *M, size_t r, size_t c, const frac_real *x, frac_real *y)
+{
+    size_t i, j;
+    if (M == NULL || x == NULL || y == NULL) return FRAC_E_NULL;
+    if (!DIM_OK(r) || !DIM_OK(c)) return FRAC_E_DIM;
+    for (i = 0; i < r; i++) {
+        const frac_real *row = M + i * c;
+        frac_real s = FRAC_R(0.0);
+        for (j = 0; j < c; j++) s += row[j] * x[j];
+        y[i] += s;
+    }
+    return FRAC_OK;
+}
+
+int frac_mat_mul(const frac_real *A, size_t m, size_t k, const frac_real *B, size_t n, frac_real *C)
+{
+    size_t i, j, l;
+    if (A == NULL || B == NULL || C == NULL) return FRAC_E_NULL;
+    if (!DIM_OK(m) || !DIM_OK(k) || !DIM_OK(n)) return FRAC_E_DIM;
+    for (i = 0; i < m; i++) {
+        frac_real *crow = C + i * n;
+        for (j = 0; j < n; j++) crow[j] = FRAC_R(0.0);
+        /* i-l-j order: row l of B is added to row i of C, both contiguous */
+        for (l = 0; l < k; l++) {
+            const frac_real a = A[i * k + l];
+            const frac_real *brow = B + l * n;
+            for (j = 0; j < n; j++) crow[j] += a * brow[j];
+        }
+    }
+    return FRAC_OK;
+}
+
+int frac_mat_mul_bt(const frac_real *A, size_t m, size_t k, const frac_real *B, size_t n, frac_real *C)
+{
+    size_t i, j, l;
+    if (A == NULL || B == NULL || C == NULL) return FRAC_E_NULL;
+    if (!DIM_OK(m) || !DIM_OK(k) || !DIM_OK(n)) return FRAC_E_DIM;
+    for (i = 0; i < m; i++) {
+        const frac_real *arow = A + i * k;
+        for (j = 0; j < n; j++) {
+            const frac_real *brow = B + j * k;
+            frac_real s = FRAC_R(0.0);
+            for (l = 0; l < k; l++) s += arow[l] * brow[l];
+            C[i * n + j] = s;
+        }
+    }
+    return FRAC_OK;
+}
+
+int frac_mat_symmetrize(frac_real *P, size_t n)
+{
+    size_t i, j;
+    if (P == NULL) return FRAC_E_NULL;
+    if (!DIM_OK(n)) return FRAC_E_DIM;
+    for (i = 0; i < n; i++) {
+        for (j = i + 1; j < n; j++) {
+            frac_real s = FRAC_R(0.5) * (P[i * n + j] + P[j * n + i]);
+            P[i * n + j] = s;
+            P[j * n + i] = s;
+        }
+    }
+    return FRAC_OK;
+}
+
+int frac_mat_sym_congruence(const frac_real *A, size_t r, size_t n, const frac_real *P,
+                            const frac_real *Q, frac_real *work, frac_real *P_out)
+{
+    size_t i, j, l;
+    if (A == NULL || P == NULL || work == NULL || P_out == NULL) return FRAC_E_NULL;
+    if (!DIM_OK(r) || !DIM_OK(n)) return FRAC_E_DIM;
+    /* work = A P (r x n) */
+    frac_mat_mul(A, r, n, P, n, work);
+    /* upper triangle of (A P) A^T, mirrored: r(r+1)/2 inner products */
+    for (i = 0; i < r; i++) {
+        const frac_real *wrow = work + i * n;
+        for (j = i; j < r; j++) {
+            const frac_real *arow = A + j * n;
+            frac_real s = FRAC_R(0.0);
+            for (l = 0; l < n; l++) s += wrow[l] * arow[l];
+            if (Q != NULL) s += FRAC_R(0.5) * (Q[i * r + j] + Q[j * r + i]);
+            P_out[i * r + j] = s;
+            P_out[j * r + i] = s;
+        }
+    }
+    return FRAC_OK;
+}
+
+int frac_mat_cholesky(frac_real *P, size_t n)
+{
+    size_t i, j, l;
+    if (P == NULL) return FRAC_E_NULL;
+    if (!DIM_OK(n)) return FRAC_E_DIM;
+    for (j = 0; j < n; j++) {
+        frac_real d = P[j * n + j];
+        for (l = 0; l < j; l++) d -= P[j * n + l] * P[j * n + l];
+        /* the negated test also rejects NaN */
+        if (!(d > FRAC_R(0.0)) || !FRAC_ISFINITE(d)) return FRAC_E_NOT_POSDEF;
+        d = FRAC_SQRT(d);
+        P[j * n + j] = d;
+        for (i = j + 1; i < n; i++) {
+            frac_real s = P[i * n + j];
+            for (l = 0; l < j; l++) s -= P[i * n + l] * P[j * n + l];
+            P[i * n + j] = s / d;
+            P[j * n + i] = FRAC_R(0.0);
+        }
+    }
+    return FRAC_OK;
+}
+
+int frac_mat_cholesky_solve(const frac_real *L, size_t n, const frac_real *b, frac_real *x)
+{
+    size_t i, l;
+    if (L == NULL || b == NULL || x == NULL) return FRAC_E_NULL;
+    if (!DIM_OK(n)) return FRAC_E_DIM;
+    /* forward: L z = b */
+    for (i = 0; i < n; i++) {
+        frac_real s = b[i];
+        for (l = 0; l < i; l++) s -= L[i * n + l] * x[l];
+        x[i] = s / L[i * n + i];
+    }
+    /* backward: L^T x = z */
+    for (i = n; i-- > 0;) {
+        frac_real s = x[i];
+        for (l = i + 1; l < n; l++) s -= L[l * n + i] * x[l];
+        x[i] = s / L[i * n + i];
+    }
+    return FRAC_OK;
+}
+
+int frac_mat_ldl(frac_real *P, size_t n)
+{
+    size_t i, j, l;
+    if (P == NULL) return FRAC_E_NULL;
+    if (!DIM_OK(n)) return FRAC_E_DIM;
+    for (j = 0; j < n; j++) {
+        frac_real d = P[j * n + j];
+        for (l = 0; l < j; l++) d -= P[j * n + l] * P[j * n + l] * P[l * n + l];
+        if (d == FRAC_R(0.0) || !FRAC_ISFINITE(d)) return FRAC_E_NUMERIC;
+        P[j * n + j] = d;
+        for (i = j + 1; i < n; i++) {
+            frac_real s = P[i * n + j];
+            for (l = 0; l < j; l++) s -= P[i * n + l] * P[j * n + l] * P[l * n + l];
+            P[i * n + j] = s / d;
+            P[j * n + i] = FRAC_R(0.0);
+        }
+    }
+    return FRAC_OK;
+}
+
+int frac_mat_ldl_solve(const frac_real *LD, size_t n, const frac_real *b, frac_real *x)
+{
+    size_t i, l;
+    if (LD == NULL || b == NULL || x == NULL) return FRAC_E_NULL;
+    if (!DIM_OK(n)) return FRAC_E_DIM;
+    for (i = 0; i < n; i++) {
+        frac_real s = b[i];
+        for (l = 0; l < i; l++) s -= LD[i * n + l] * x[l];
+        x[i] = s;
+    }
+    for (i = 0; i < n; i++) x[i] /= LD[i * n + i];
+    for (i = n; i-- > 0;) {
+        frac_real s = x[i];
+        for (l = i + 1; l < n; l++) s -= LD[l * n + i] * x[l];
+        x[i] = s;
+    }
+    return FRAC_OK;
+}
+
+int frac_mat_all_finite(const frac_real *v, size_t count)
+{
+    size_t i;
+    if (v == NULL) return 0;
+    for (i = 0; i < count; i++) {
+        if (!FRAC_ISFINITE(v[i])) return 0;
+    }
+    return 1;
+}
