@@ -1,0 +1,115 @@
+/*
+ * Watchdog - stale-sensor detection and fault reaction (FracCtrl.fun).
+ *
+ * The sensor task (e.g. ImuRead in Cyclic #2, Table 2.3) increments
+ * SampleCounter for every new sample. If the counter has not changed for
+ * more than MaxStaleCycles calls, or the torque setpoint is not finite, the
+ * fault latches: TorqueOut ramps from its last finite value towards zero
+ * at RampRate [Nm/s] (a step change of the setpoint would excite the
+ * ~3 Hz first beam mode, seed 004 part 2, 9.2) and stays at zero until a
+ * rising edge of Acknowledge while the sensor is fresh and the torque
+ * finite. The ramp is the block's only arithmetic: a bounded rate limiter
+ * towards zero, the fault reaction itself, not a control law.
+ *
+ * Cost: O(1) per call, no libfrac object, no allocation.
+ */
+#include "FracCtrl.h"
+#include "fracctrl_status.h"
+#include "frac/frac_types.h"
+
+static UINT watchdog_check(const WatchdogParType *p)
+{
+    if (p->MaxStaleCycles < 1 || !FRAC_ISFINITE(p->RampRate) || !(p->RampRate > 0.0f)
+        || !FRAC_ISFINITE(p->CycleTime) || !(p->CycleTime > 0.0f)) {
+        return fracERR_PARAM;
+    }
+    return fracSTAT_OK;
+}
+
+void Watchdog(struct Watchdog* inst)
+{
+    WatchdogInternalType *in = &inst->Internal;
+    int enable_edge;
+    BOOL ack_edge;
+    REAL step;
+
+    if (!inst->Enable) {
+        fracctrl_disable(&in->Fb);
+        in->Latched = 0;
+        in->LastTorque = 0.0f;
+        in->AckOld = 0;
+        inst->Active = 0;
+        inst->Busy = 0;
+        inst->Error = 0;
+        inst->StatusID = fracSTAT_DISABLED;
+        inst->TorqueOut = 0.0f;
+        inst->Stale = 0;
+        inst->StaleCycles = 0;
+        inst->RampActive = 0;
+        return;
+    }
+    if (fracctrl_load_edge(&in->Fb, inst->Enable, inst->Update, &enable_edge)) {
+        UINT st = watchdog_check(&inst->Parameters);
+        fracctrl_par_result(&in->Fb, st, enable_edge);
+        if (st == fracSTAT_OK) {
+            in->Par = inst->Parameters;
+        }
+        if (enable_edge) {
+            in->Latched = 0;
+            in->LastTorque = 0.0f;
+            in->AckOld = inst->Acknowledge;
+        }
+    }
+    if (!in->Fb.ParOk) {
+        inst->Active = 0;
+        inst->Busy = 0;
+        inst->Error = 1;
+        inst->StatusID = in->Fb.ParStatus;
+        inst->TorqueOut = 0.0f;
+        inst->RampActive = 0;
+        return;
+    }
+
+    if (enable_edge || inst->SampleCounter != in->CounterOld) {
+        in->CounterOld = inst->SampleCounter;
+        inst->StaleCycles = 0;
+    } else if (inst->StaleCycles < 0xFFFFFFFFU) {
+        inst->StaleCycles++;
+    }
+    inst->Stale = inst->StaleCycles > in->Par.MaxStaleCycles;
+
+    ack_edge = inst->Acknowledge && !in->AckOld;
+    in->AckOld = inst->Acknowledge;
+    if (in->Latched && ack_edge && !inst->Stale && FRAC_ISFINITE(inst->TorqueIn)) {
+        in->Latched = 0;
+    }
+    if (!in->Latched) {
+        if (inst->Stale) {
+            in->Latched = 1;
+            in->FaultID = fracERR_SENSOR_STALE;
+        } else if (!FRAC_ISFINITE(inst->TorqueIn)) {
+            in->Latched = 1;
+            in->FaultID = fracERR_TORQUE_NONFINITE;
+        }
+    }
+
+    if (in->Latched) {
+        step = in->Par.RampRate * in->Par.CycleTime;
+        if (in->LastTorque > step) {
+            in->LastTorque -= step;
+        } else if (in->LastTorque < -step) {
+            in->LastTorque += step;
+        } else {
+            in->LastTorque = 0.0f;
+        }
+        inst->RampActive = in->LastTorque != 0.0f;
+    } else {
+        in->LastTorque = inst->TorqueIn;
+        inst->RampActive = 0;
+    }
+    inst->TorqueOut = in->LastTorque;
+    inst->Active = !in->Latched;
+    inst->Busy = 1;
+    inst->Error = in->Latched || in->Fb.ParStatus != fracSTAT_OK;
+    inst->StatusID = in->Latched ? in->FaultID : in->Fb.ParStatus;
+}

@@ -1,0 +1,205 @@
+#!/usr/bin/env python3
+"""Tests of plc_blocks/tools/plcgen.py: the generated header follows the
+IEC 61131-3 declarations field by field, compiles, and every malformed
+declaration is rejected with FILE:LINE and a message naming the problem.
+
+usage: test_plcgen.py PATH/TO/plcgen.py"""
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+
+GEN = None
+INCLUDE = None
+
+LBY = """<?xml version="1.0" encoding="utf-8"?>
+<Library Version="1.0.0" SubType="ANSIC" xmlns="http://br-automation.co.at/AS/Library">
+  <Files>
+    <File>Lib.typ</File>
+    <File>Lib.var</File>
+    <File>Lib.fun</File>
+    <File>Gain.c</File>
+  </Files>
+</Library>
+"""
+TYP = """(* types *)
+TYPE
+	GainParType : STRUCT (*parameters*)
+		K : REAL; (*gain*)
+		Table : ARRAY[0..lenTAB] OF LREAL; (*table*)
+		Grid : ARRAY[1..2, 0..2] OF INT;
+	END_STRUCT;
+	ModeEnum : (
+		modeOFF := 0, (*off*)
+		modeON, (*on*)
+		modeHOLD := 7
+	);
+	Counts : UDINT;
+	Real : {C double "math.h"}; (*C type*)
+END_TYPE
+"""
+VAR = """VAR CONSTANT
+	lenTAB : UINT := 3; (*last index*)
+	errX : UINT := 16#FFFE;
+	kNeg : DINT := -5;
+	kPi : REAL := 3.14;
+	kOn : BOOL := TRUE;
+END_VAR
+"""
+FUN = """FUNCTION_BLOCK Gain (*a gain*)
+	VAR_INPUT
+		Enable : BOOL;
+		Parameters : GainParType;
+		U : REAL; (*input*)
+		Name : STRING[10];
+	END_VAR
+	VAR_OUTPUT
+		Y : REAL;
+		Mode : ModeEnum;
+		N : Counts;
+	END_VAR
+	VAR
+		Acc : Real;
+	END_VAR
+END_FUNCTION_BLOCK
+"""
+
+
+class Lib:
+    def __init__(self, **over):
+        self.dir = tempfile.mkdtemp(prefix="plcgen")
+        files = {"ANSIC.lby": LBY, "Lib.typ": TYP, "Lib.var": VAR, "Lib.fun": FUN,
+                 "Gain.c": "/* body */\n"}
+        files.update(over)
+        for name, text in files.items():
+            if text is not None:
+                with open(os.path.join(self.dir, name), "w") as fh:
+                    fh.write(text)
+
+    def run(self):
+        out = os.path.join(self.dir, "out.h")
+        p = subprocess.run([sys.executable, GEN, os.path.join(self.dir, "ANSIC.lby"), out],
+                           capture_output=True, text=True)
+        header = open(out).read() if p.returncode == 0 else None
+        return p.returncode, p.stderr, header
+
+    def close(self):
+        shutil.rmtree(self.dir)
+
+
+class GoodDeclarations(unittest.TestCase):
+    def setUp(self):
+        self.lib = Lib()
+        self.rc, self.err, self.h = self.lib.run()
+        self.assertEqual(self.rc, 0, self.err)
+
+    def tearDown(self):
+        self.lib.close()
+
+    def test_struct_fields_in_declaration_order_with_arrays(self):
+        body = re.search(r"typedef struct GainParType \{.*?\n(.*?)\} GainParType;", self.h, re.S).group(1)
+        fields = [l.split(";")[0].strip() for l in body.strip().splitlines()]
+        self.assertEqual(fields, ["REAL K", "LREAL Table[4]", "INT Grid[2][3]"])
+
+    def test_function_block_sections_follow_the_fun_file(self):
+        body = re.search(r"typedef struct Gain \{\n(.*?)\} Gain_typ;", self.h, re.S).group(1)
+        decls = [l.split(";")[0].strip() for l in body.splitlines() if ";" in l]
+        self.assertEqual(decls, ["BOOL Enable", "GainParType Parameters", "REAL U", "plcstring Name[11]",
+                                 "REAL Y", "ModeEnum Mode", "Counts N", "Real Acc"])
+        self.assertIn("void Gain(struct Gain* inst);", self.h)
+
+    def test_enum_values_continue_after_explicit_ones(self):
+        self.assertRegex(self.h, r"modeOFF = 0,.*\n\s*modeON = 1,.*\n\s*modeHOLD = 7")
+
+    def test_constants_keep_type_and_value(self):
+        self.assertIn("#define errX ((UINT)65534U)", self.h)
+        self.assertIn("#define kNeg ((DINT)(-5))", self.h)
+        self.assertIn("#define kPi ((REAL)3.14f)", self.h)
+        self.assertIn("#define kOn ((BOOL)1)", self.h)
+
+    def test_c_type_pragma_includes_its_header(self):
+        self.assertIn('#include "math.h"', self.h)
+        self.assertIn("typedef double Real;", self.h)
+
+    def test_comments_become_c_comments(self):
+        self.assertIn("REAL U; /* input */", self.h)
+
+    def test_generated_header_compiles_as_c89(self):
+        src = os.path.join(self.lib.dir, "use.c")
+        with open(src, "w") as fh:
+            fh.write('#include "out.h"\nint main(void) { struct Gain g; g.Y = 0.0f; Gain(&g); return (int)g.Y; }\n'
+                     'void Gain(struct Gain* inst) { inst->Y = inst->U * inst->Parameters.K; }\n')
+        p = subprocess.run(["cc", "-std=c89", "-pedantic", "-Wall", "-Wextra", "-Werror", "-fsyntax-only",
+                            "-I" + INCLUDE, "-I" + self.lib.dir, src], capture_output=True, text=True)
+        self.assertEqual(p.returncode, 0, p.stderr)
+
+
+class MalformedDeclarations(unittest.TestCase):
+    def reject(self, pattern, **files):
+        lib = Lib(**files)
+        try:
+            rc, err, _ = lib.run()
+        finally:
+            lib.close()
+        self.assertEqual(rc, 1, "accepted a malformed declaration")
+        self.assertRegex(err, r"^\S+:\d+: error: ")
+        self.assertRegex(err, pattern)
+
+    def test_missing_semicolon_names_the_variable_and_line(self):
+        self.reject(r"Lib\.fun:5: error: expected ';' after the declaration of 'U'",
+                    **{"Lib.fun": FUN.replace("U : REAL; (*input*)", "U : REAL (*input*)")})
+
+    def test_unknown_type(self):
+        self.reject(r"unknown type 'REEL'", **{"Lib.fun": FUN.replace("U : REAL;", "U : REEL;")})
+
+    def test_missing_end_var(self):
+        self.reject(r"VAR_OUTPUT section of 'Gain' has no END_VAR",
+                    **{"Lib.fun": FUN.replace("\t\tN : Counts;\n\tEND_VAR", "\t\tN : Counts;\n")})
+
+    def test_duplicate_member(self):
+        self.reject(r"'Y' declared twice in FUNCTION_BLOCK Gain",
+                    **{"Lib.fun": FUN.replace("N : Counts;", "Y : REAL;")})
+
+    def test_initial_value_in_block(self):
+        self.reject(r"initial value for 'U' is not supported",
+                    **{"Lib.fun": FUN.replace("U : REAL;", "U : REAL := 1.0;")})
+
+    def test_unterminated_comment(self):
+        self.reject(r"unterminated comment", **{"Lib.typ": TYP.replace("(*C type*)", "(*C type")})
+
+    def test_inverted_array_range(self):
+        self.reject(r"empty array range 3\.\.1", **{"Lib.typ": TYP.replace("1..2, 0..2", "3..1, 0..2")})
+
+    def test_constant_out_of_range(self):
+        self.reject(r"value 70000 out of range of UINT", **{"Lib.var": VAR.replace("16#FFFE", "70000")})
+
+    def test_malformed_c_pragma(self):
+        self.reject(r"malformed C type pragma", **{"Lib.typ": TYP.replace('{C double "math.h"}', "{C double}")})
+
+    def test_block_without_body(self):
+        self.reject(r"function block 'Gain' has no body Gain\.c", **{"Gain.c": None,
+                    "ANSIC.lby": LBY.replace("<File>Gain.c</File>", "")})
+
+    def test_body_file_not_in_descriptor(self):
+        self.reject(r"'Extra\.c' is in the library folder but not in the descriptor", **{"Extra.c": "/* */\n"})
+
+    def test_listed_file_missing(self):
+        self.reject(r"file 'Gain\.c' listed in the descriptor does not exist", **{"Gain.c": None})
+
+
+class ShippedLibrary(unittest.TestCase):
+    def test_fracctrl_declarations_generate(self):
+        root = os.path.dirname(os.path.dirname(os.path.abspath(GEN)))
+        with tempfile.TemporaryDirectory() as d:
+            p = subprocess.run([sys.executable, GEN, os.path.join(root, "FracCtrl", "ANSIC.lby"),
+                                os.path.join(d, "FracCtrl.h")], capture_output=True, text=True)
+            self.assertEqual(p.returncode, 0, p.stderr)
+
+
+if __name__ == "__main__":
+    GEN = os.path.abspath(sys.argv.pop(1))
+    INCLUDE = os.path.join(os.path.dirname(os.path.dirname(GEN)), "include")
+    unittest.main(verbosity=1)

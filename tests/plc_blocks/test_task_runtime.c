@@ -1,0 +1,405 @@
+/* Host emulation of the B&R task model (plc_blocks/runtime/plc_rt.h):
+ * configuration (Table 2.3), priority scheduling on the simulated clock,
+ * the I/O image, _INIT/_EXIT order, cycle-time violations, wall clock. */
+#include "frac_test.h"
+#include "plc_rt.h"
+
+#include <string.h>
+#include <time.h>
+
+#define US 1000u
+
+/* ---- trace recording ---- */
+typedef struct ev_log {
+    plc_rt_event ev[256];
+    size_t n;
+} ev_log;
+
+static void record(void *ctx, const plc_rt_event *e)
+{
+    ev_log *l = (ev_log *)ctx;
+    if (l->n < 256) {
+        l->ev[l->n++] = *e;
+    }
+}
+
+static void expect_event(const ev_log *l, size_t i, plc_rt_event_kind kind, unsigned cls, unsigned t_us)
+{
+    if (i >= l->n) {
+        fail_msg("event %u missing (only %u recorded)", (unsigned)i, (unsigned)l->n);
+    }
+    if (l->ev[i].kind != kind || l->ev[i].cls != cls || l->ev[i].t_ns != (uint64_t)t_us * US) {
+        fail_msg("event %u: got kind %d class %u t %.1f us, expected kind %d class %u t %u us", (unsigned)i,
+                 (int)l->ev[i].kind, l->ev[i].cls, (double)l->ev[i].t_ns / US, (int)kind, cls, t_us);
+    }
+}
+
+static void load(plc_rt_config *cfg, const char *text)
+{
+    char err[256];
+    int rc = plc_rt_config_parse(cfg, text, "test", err, sizeof err);
+    if (rc != PLC_RT_OK) {
+        fail_msg("config rejected: %s", err);
+    }
+}
+
+static void build(plc_rt *rt, const plc_rt_config *cfg, const plc_program *const *reg, size_t n)
+{
+    char err[256];
+    int rc = plc_rt_init(rt, cfg, reg, n, err, sizeof err);
+    if (rc != PLC_RT_OK) {
+        fail_msg("init failed: %s", err);
+    }
+}
+
+/* ---- configuration ---- */
+static void test_config_file_mirrors_table_2_3(void **state)
+{
+    plc_rt_config cfg;
+    char err[256];
+    (void)state;
+    assert_int_equal(plc_rt_config_load(&cfg, FRAC_SOURCE_DIR "/plc_blocks/runtime/x20cp1586.cfg", err, sizeof err),
+                     PLC_RT_OK);
+    assert_int_equal(cfg.interface_cycle_us, 400);
+    assert_int_equal(cfg.tick_us, 100);
+    assert_int_equal(cfg.cls[0].duration_us, 1200);
+    assert_int_equal(cfg.cls[1].duration_us, 600);
+    assert_int_equal(cfg.cyclic_resources, 8);
+    assert_int_equal(cfg.idle_task_class, 2);
+    assert_int_equal(cfg.idle_time_us, 600);
+    assert_int_equal(cfg.reaction, PLC_RT_REACT_SERVICE);
+    assert_string_equal(cfg.cls[0].programs[0], "ArmCtrl");
+    assert_string_equal(cfg.cls[1].programs[0], "ImuRead");
+}
+
+static void expect_rejected(const char *text, const char *msg_part)
+{
+    plc_rt_config cfg;
+    char err[256] = "";
+    assert_int_equal(plc_rt_config_parse(&cfg, text, "bad.cfg", err, sizeof err), PLC_RT_E_CONFIG);
+    if (!strstr(err, msg_part)) {
+        fail_msg("message '%s' does not mention '%s'", err, msg_part);
+    }
+}
+
+static void test_config_rejects_violations_of_the_timing_rules(void **state)
+{
+    (void)state;
+    expect_rejected("[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\n[cyclic1]\nduration_us = 1250\n",
+                    "not a multiple of the system tick 100 us");
+    expect_rejected("[timing]\ninterface_cycle_us = 500\n[cyclic1]\nduration_us = 1000\n",
+                    "not a positive multiple of 400 us");
+    expect_rejected("[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.3\n",
+                    "not a positive integer or the reciprocal of one");
+    expect_rejected("[timing]\ninterface_cycle_us = 400\n[resources]\ncyclic_resources = 2\n[cyclic3]\nduration_us = 400\n",
+                    "[cyclic3] is configured but cyclic_resources = 2");
+    expect_rejected("[timing]\ninterface_cycle_us = 400\n[cyclic9]\n", "unknown section [cyclic9]");
+    expect_rejected("[timing]\ninterface_cycle_us = 400\ncycle = 3\n", "bad.cfg:3: unknown key 'cycle'");
+    expect_rejected("[timing]\ninterface_cycle_us = -400\n", "bad.cfg:2: interface_cycle_us = '-400'");
+    expect_rejected("[timing]\ninterface_cycle_us = 400\n[cyclic1]\nprograms = A\n", "has programs but no duration_us");
+}
+
+static void test_unknown_program_is_reported(void **state)
+{
+    plc_rt_config cfg;
+    plc_rt rt;
+    char err[256];
+    (void)state;
+    load(&cfg, "[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\n[cyclic1]\nduration_us = 1200\n"
+               "programs = Nope\n");
+    assert_int_equal(plc_rt_init(&rt, &cfg, NULL, 0, err, sizeof err), PLC_RT_E_PROGRAM);
+    assert_non_null(strstr(err, "'Nope'"));
+}
+
+/* ---- scheduling on the simulated clock ---- */
+static void test_lower_class_number_runs_first_and_preempts(void **state)
+{
+    plc_rt_config cfg;
+    plc_rt rt;
+    ev_log log;
+    size_t i = 0;
+    (void)state;
+    load(&cfg, "[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\n"
+               "[cyclic1]\nduration_us = 1200\nsim_cost_us = 300\n"
+               "[cyclic2]\nduration_us = 600\nsim_cost_us = 100\n"
+               "[cyclic3]\nduration_us = 2400\nsim_cost_us = 600\n");
+    build(&rt, &cfg, NULL, 0);
+    memset(&log, 0, sizeof log);
+    rt.trace_hook = record;
+    rt.trace_ctx = &log;
+    assert_int_equal(plc_rt_start(&rt), PLC_RT_OK);
+    assert_int_equal(plc_rt_run_sim(&rt, 24), PLC_RT_OK);
+    expect_event(&log, i++, PLC_RT_EV_RELEASE, 1, 0);
+    expect_event(&log, i++, PLC_RT_EV_RELEASE, 2, 0);
+    expect_event(&log, i++, PLC_RT_EV_RELEASE, 3, 0);
+    expect_event(&log, i++, PLC_RT_EV_START, 1, 0);
+    expect_event(&log, i++, PLC_RT_EV_END, 1, 300);
+    expect_event(&log, i++, PLC_RT_EV_START, 2, 300);
+    expect_event(&log, i++, PLC_RT_EV_END, 2, 400);
+    expect_event(&log, i++, PLC_RT_EV_START, 3, 400);
+    expect_event(&log, i++, PLC_RT_EV_RELEASE, 2, 600);
+    expect_event(&log, i++, PLC_RT_EV_PREEMPT, 3, 600);
+    expect_event(&log, i++, PLC_RT_EV_START, 2, 600);
+    expect_event(&log, i++, PLC_RT_EV_END, 2, 700);
+    expect_event(&log, i++, PLC_RT_EV_END, 3, 1100);
+    expect_event(&log, i++, PLC_RT_EV_RELEASE, 1, 1200);
+    expect_event(&log, i++, PLC_RT_EV_RELEASE, 2, 1200);
+    expect_event(&log, i++, PLC_RT_EV_START, 1, 1200);
+    expect_event(&log, i++, PLC_RT_EV_END, 1, 1500);
+    expect_event(&log, i++, PLC_RT_EV_START, 2, 1500);
+    expect_event(&log, i++, PLC_RT_EV_END, 2, 1600);
+    expect_event(&log, i++, PLC_RT_EV_RELEASE, 2, 1800);
+    expect_event(&log, i++, PLC_RT_EV_START, 2, 1800);
+    expect_event(&log, i++, PLC_RT_EV_END, 2, 1900);
+    assert_int_equal(log.n, i);
+    assert_int_equal(rt.stats[0].cycles, 2);
+    assert_int_equal(rt.stats[1].cycles, 4);
+    assert_int_equal(rt.stats[2].cycles, 1);
+    assert_int_equal(rt.stats[2].response_ns_max, 1100 * US);
+    assert_int_equal(rt.stats[0].violations + rt.stats[1].violations + rt.stats[2].violations, 0);
+    plc_rt_stop(&rt);
+}
+
+/* Producer in Cyclic #1 publishes a counter; a tick hook (the "hardware")
+ * watches the process image and feeds a sensor value every tick. */
+typedef struct io_fixture {
+    int img_count, img_sensor;      /* process image */
+    int loc_count, loc_sensor;      /* program-local copies */
+    int seen_sensor[8];
+    int n_cycles;
+    int image_at_tick[24];
+    char order[64];
+    size_t n_order;
+} io_fixture;
+
+static void producer_init(void *ctx)
+{
+    io_fixture *f = (io_fixture *)ctx;
+    f->order[f->n_order++] = 'I';
+}
+
+static void producer_cyclic(void *ctx)
+{
+    io_fixture *f = (io_fixture *)ctx;
+    if (f->n_cycles < 8) {
+        f->seen_sensor[f->n_cycles] = f->loc_sensor;
+    }
+    f->n_cycles++;
+    f->loc_count = f->n_cycles;
+    f->order[f->n_order++] = 'C';
+}
+
+static void producer_exit(void *ctx)
+{
+    io_fixture *f = (io_fixture *)ctx;
+    f->order[f->n_order++] = 'X';
+}
+
+static void second_init(void *ctx)
+{
+    io_fixture *f = (io_fixture *)ctx;
+    f->order[f->n_order++] = 'i';
+}
+
+static void second_exit(void *ctx)
+{
+    io_fixture *f = (io_fixture *)ctx;
+    f->order[f->n_order++] = 'x';
+}
+
+static void hardware_tick(void *ctx, uint64_t t_ns)
+{
+    io_fixture *f = (io_fixture *)ctx;
+    unsigned k = (unsigned)(t_ns / (100 * US));
+    if (k < 24) {
+        f->image_at_tick[k] = f->img_count;
+    }
+    f->img_sensor = (int)k;
+}
+
+static void test_inputs_latched_at_start_outputs_published_at_end(void **state)
+{
+    static io_fixture f;
+    plc_io in[1], out[1];
+    plc_program prod, second;
+    const plc_program *reg[2];
+    plc_rt_config cfg;
+    plc_rt rt;
+    (void)state;
+    memset(&f, 0, sizeof f);
+    in[0].image = &f.img_sensor; in[0].local = &f.loc_sensor; in[0].size = sizeof(int);
+    out[0].image = &f.img_count; out[0].local = &f.loc_count; out[0].size = sizeof(int);
+    memset(&prod, 0, sizeof prod);
+    prod.name = "Producer"; prod.init = producer_init; prod.cyclic = producer_cyclic; prod.exit = producer_exit;
+    prod.ctx = &f; prod.inputs = in; prod.n_inputs = 1; prod.outputs = out; prod.n_outputs = 1;
+    memset(&second, 0, sizeof second);
+    second.name = "Second"; second.init = second_init; second.exit = second_exit; second.ctx = &f;
+    reg[0] = &second;
+    reg[1] = &prod;
+    load(&cfg, "[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\n"
+               "[cyclic1]\nduration_us = 1200\nsim_cost_us = 300\nprograms = Producer\n"
+               "[cyclic4]\nduration_us = 2400\nprograms = Second\n");
+    build(&rt, &cfg, reg, 2);
+    rt.tick_hook = hardware_tick;
+    rt.tick_ctx = &f;
+    assert_int_equal(plc_rt_run_sim(&rt, 1), PLC_RT_E_STATE);
+    assert_int_equal(plc_rt_start(&rt), PLC_RT_OK);
+    assert_int_equal(plc_rt_start(&rt), PLC_RT_E_STATE);
+    assert_int_equal(plc_rt_run_sim(&rt, 24), PLC_RT_OK);
+    /* the cycle at 0 computed count 1 immediately, but the image shows it
+     * only from its end at 300 us on; the cycle at 1200 publishes at 1500 */
+    assert_int_equal(f.image_at_tick[0], 0);
+    assert_int_equal(f.image_at_tick[1], 0);
+    assert_int_equal(f.image_at_tick[2], 0);
+    assert_int_equal(f.image_at_tick[3], 1);
+    assert_int_equal(f.image_at_tick[14], 1);
+    assert_int_equal(f.image_at_tick[15], 2);
+    /* inputs are the image at the cycle start: tick 0 and tick 12 */
+    assert_int_equal(f.n_cycles, 2);
+    assert_int_equal(f.seen_sensor[0], 0);
+    assert_int_equal(f.seen_sensor[1], 12);
+    plc_rt_stop(&rt);
+    f.order[f.n_order] = '\0';
+    /* _INIT class 1 before class 4, _EXIT in reverse order, each once */
+    assert_string_equal(f.order, "IiCCxX");
+}
+
+static void test_overrun_is_detected_and_releases_skipped(void **state)
+{
+    plc_rt_config cfg;
+    plc_rt rt;
+    ev_log log;
+    size_t i;
+    int violations = 0;
+    (void)state;
+    load(&cfg, "[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\nviolation_reaction = continue\n"
+               "[cyclic1]\nduration_us = 1200\nsim_cost_us = 1500\n");
+    build(&rt, &cfg, NULL, 0);
+    memset(&log, 0, sizeof log);
+    rt.violation_hook = record;
+    rt.violation_ctx = &log;
+    assert_int_equal(plc_rt_start(&rt), PLC_RT_OK);
+    assert_int_equal(plc_rt_run_sim(&rt, 48), PLC_RT_OK);
+    for (i = 0; i < log.n; i++) {
+        violations += log.ev[i].kind == PLC_RT_EV_VIOLATION;
+    }
+    assert_int_equal(violations, 2);
+    expect_event(&log, 0, PLC_RT_EV_VIOLATION, 1, 1200);
+    expect_event(&log, 1, PLC_RT_EV_VIOLATION, 1, 3600);
+    assert_int_equal(rt.stats[0].violations, 2);
+    assert_int_equal(rt.stats[0].skipped, 2);
+    assert_int_equal(rt.stats[0].cycles, 2);
+    assert_int_equal(rt.stats[0].response_ns_max, 1500 * US);
+}
+
+static void test_tolerance_delays_the_violation(void **state)
+{
+    plc_rt_config cfg;
+    plc_rt rt;
+    (void)state;
+    load(&cfg, "[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\nviolation_reaction = continue\n"
+               "[cyclic1]\nduration_us = 1200\ntolerance_us = 400\nsim_cost_us = 1500\n");
+    build(&rt, &cfg, NULL, 0);
+    assert_int_equal(plc_rt_start(&rt), PLC_RT_OK);
+    assert_int_equal(plc_rt_run_sim(&rt, 24), PLC_RT_OK);
+    assert_int_equal(rt.stats[0].violations, 0);
+    assert_int_equal(rt.stats[0].skipped, 1);
+}
+
+static void test_service_mode_stops_every_task(void **state)
+{
+    plc_rt_config cfg;
+    plc_rt rt;
+    (void)state;
+    load(&cfg, "[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\nviolation_reaction = service\n"
+               "[cyclic1]\nduration_us = 1200\nsim_cost_us = 100\n[cyclic2]\nduration_us = 600\nsim_cost_us = 550\n");
+    build(&rt, &cfg, NULL, 0);
+    assert_int_equal(plc_rt_start(&rt), PLC_RT_OK);
+    /* Cyclic #2 gets 500 us of CPU after Cyclic #1 in [0, 600): unfinished at 600 */
+    assert_int_equal(plc_rt_run_sim(&rt, 100), PLC_RT_SERVICE);
+    assert_int_equal(rt.stats[1].violations, 1);
+    assert_true(rt.service);
+    assert_int_equal(rt.now_ns, 600 * US);
+    assert_int_equal(plc_rt_run_sim(&rt, 1), PLC_RT_SERVICE);
+}
+
+/* ---- wall clock ---- */
+static volatile double sink;
+
+static void burn_us(long us)
+{
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    do {
+        sink += 1.0;
+        clock_gettime(CLOCK_MONOTONIC, &t1);
+    } while ((t1.tv_sec - t0.tv_sec) * 1000000L + (t1.tv_nsec - t0.tv_nsec) / 1000L < us);
+}
+
+static void busy_50(void *ctx)
+{
+    (void)ctx;
+    burn_us(50);
+}
+
+static void busy_1500(void *ctx)
+{
+    (void)ctx;
+    burn_us(1500);
+}
+
+static void test_wall_clock_measures_cpu_time_and_detects_overrun(void **state)
+{
+    plc_program p1, p2;
+    const plc_program *reg[2];
+    plc_rt_config cfg;
+    plc_rt rt;
+    struct timespec t0, t1;
+    double elapsed_us;
+    (void)state;
+    memset(&p1, 0, sizeof p1);
+    p1.name = "Light"; p1.cyclic = busy_50;
+    memset(&p2, 0, sizeof p2);
+    p2.name = "Heavy"; p2.cyclic = busy_1500;
+    reg[0] = &p1;
+    reg[1] = &p2;
+    load(&cfg, "[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\nviolation_reaction = continue\n"
+               "[cyclic1]\nduration_us = 1200\nprograms = Light\n[cyclic2]\nduration_us = 6000\nprograms = Heavy\n");
+    build(&rt, &cfg, reg, 2);
+    assert_int_equal(plc_rt_start(&rt), PLC_RT_OK);
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    assert_int_equal(plc_rt_run_wall(&rt, 24), PLC_RT_OK);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    elapsed_us = (double)(t1.tv_sec - t0.tv_sec) * 1e6 + (double)(t1.tv_nsec - t0.tv_nsec) / 1e3;
+    assert_true(elapsed_us >= 2300.0); /* the last tick starts at 2.3 ms */
+    assert_int_equal(rt.stats[0].cycles, 2);
+    assert_int_equal(rt.stats[1].cycles, 1);
+    assert_true(rt.stats[0].cpu_ns_max > 0);
+    assert_true(rt.stats[1].cpu_ns_total > 0);
+    plc_rt_stop(&rt);
+
+    /* the 1.5 ms program moved into the 1.2 ms class overruns */
+    load(&cfg, "[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\nviolation_reaction = continue\n"
+               "[cyclic1]\nduration_us = 1200\nprograms = Heavy\n");
+    build(&rt, &cfg, reg, 2);
+    assert_int_equal(plc_rt_start(&rt), PLC_RT_OK);
+    assert_int_equal(plc_rt_run_wall(&rt, 24), PLC_RT_OK);
+    assert_true(rt.stats[0].violations >= 1);
+    plc_rt_stop(&rt);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_config_file_mirrors_table_2_3),
+        cmocka_unit_test(test_config_rejects_violations_of_the_timing_rules),
+        cmocka_unit_test(test_unknown_program_is_reported),
+        cmocka_unit_test(test_lower_class_number_runs_first_and_preempts),
+        cmocka_unit_test(test_inputs_latched_at_start_outputs_published_at_end),
+        cmocka_unit_test(test_overrun_is_detected_and_releases_skipped),
+        cmocka_unit_test(test_tolerance_delays_the_violation),
+        cmocka_unit_test(test_service_mode_stops_every_task),
+        cmocka_unit_test(test_wall_clock_measures_cpu_time_and_detects_overrun),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
