@@ -28,3 +28,64 @@ FUNCTION_BLOCK Watchdog (*Stale-sensor detection and fault reaction: on a stale 
 		Internal : WatchdogInternalType;
 	END_VAR
 END_FUNCTION_BLOCK
+
+FUNCTION_BLOCK LUT1D (*1-D lookup table y = f(x), linear or monotone cubic (frac/lut.h); feedforward tables of seed 004 Sec. 6.4*)
+	VAR_INPUT
+		Enable : BOOL;
+		Parameters : LUT1DParType;
+		Update : BOOL; (*Rising edge: take over Parameters*)
+		X : REAL; (*Query point*)
+	END_VAR
+	VAR_OUTPUT
+		Valid : BOOL; (*Y is valid (also when clamped or extrapolated)*)
+		Busy : BOOL;
+		Error : BOOL;
+		StatusID : UINT; (*fracSTAT_OK, fracWRN_CLAMPED, 52002 extrapolated, fracERR_NONFINITE (Y holds), 51xxx parameter errors*)
+		Y : REAL; (*Interpolated value*)
+	END_VAR
+	VAR
+		Fb : FracFbStateType;
+		Lut : FracLut1Obj;
+	END_VAR
+END_FUNCTION_BLOCK
+
+FUNCTION_BLOCK LUT2D (*2-D bilinear lookup table y = f(x1, x2) (frac/lut.h)*)
+	VAR_INPUT
+		Enable : BOOL;
+		Parameters : LUT2DParType;
+		Update : BOOL;
+		X1 : REAL;
+		X2 : REAL;
+	END_VAR
+	VAR_OUTPUT
+		Valid : BOOL;
+		Busy : BOOL;
+		Error : BOOL;
+		StatusID : UINT; (*as LUT1D*)
+		Y : REAL;
+	END_VAR
+	VAR
+		Fb : FracFbStateType;
+		Lut : FracLut2Obj;
+	END_VAR
+END_FUNCTION_BLOCK
+
+FUNCTION_BLOCK FrictionComp (*Static friction compensation torque (seed 004 (5.2)-(5.4), sgn replaced by tanh(K v)) (frac/friction.h)*)
+	VAR_INPUT
+		Enable : BOOL;
+		Parameters : FrictionCompParType;
+		Update : BOOL;
+		Velocity : REAL; (*Motor velocity, driven side [rad/s]*)
+	END_VAR
+	VAR_OUTPUT
+		Valid : BOOL;
+		Busy : BOOL;
+		Error : BOOL;
+		StatusID : UINT; (*fracSTAT_OK, fracERR_NONFINITE (Torque holds), fracERR_PARAM*)
+		Torque : REAL; (*Friction torque estimate [Nm], added to the setpoint*)
+	END_VAR
+	VAR
+		Fb : FracFbStateType;
+		Friction : FracFrictionObj;
+	END_VAR
+END_FUNCTION_BLOCK

@@ -43,3 +43,34 @@ void fracctrl_disable(FracFbStateType *fb)
     fb->ParOk = 0;
     fb->ParStatus = fracSTAT_DISABLED;
 }
+
+void fracctrl_report(const FracFbStateType *fb, int status, BOOL *valid, BOOL *busy, BOOL *error,
+                     UINT *status_id)
+{
+    *busy = 1;
+    if (status < 0) {
+        *valid = 0;
+        *error = 1;
+        *status_id = fracctrl_status_id(status);
+        return;
+    }
+    *valid = 1;
+    *error = fb->ParStatus != fracSTAT_OK;
+    *status_id = *error ? fb->ParStatus : fracctrl_status_id(status);
+}
+
+void fracctrl_report_no_par(const FracFbStateType *fb, BOOL *valid, BOOL *busy, BOOL *error, UINT *status_id)
+{
+    *valid = 0;
+    *busy = 0;
+    *error = 1;
+    *status_id = fb->ParStatus;
+}
+
+void fracctrl_report_disabled(BOOL *valid, BOOL *busy, BOOL *error, UINT *status_id)
+{
+    *valid = 0;
+    *busy = 0;
+    *error = 0;
+    *status_id = fracSTAT_DISABLED;
+}

@@ -35,6 +35,23 @@ int fracctrl_load_edge(FracFbStateType *fb, BOOL enable, BOOL update, int *enabl
  */
 void fracctrl_par_result(FracFbStateType *fb, UINT status_id, int enable_edge);
 
+/*
+ * Outputs after a libfrac step that returned `status`: an error clears
+ * Valid and sets Error with its StatusID (the block's output holds the last
+ * finite value, as libfrac guarantees); otherwise Valid is TRUE and
+ * StatusID is a pending parameter error (a rejected Update), else the
+ * step's warning or fracSTAT_OK. Busy is TRUE.
+ */
+void fracctrl_report(const FracFbStateType *fb, int status, BOOL *valid, BOOL *busy, BOOL *error,
+                     UINT *status_id);
+
+/* Outputs when no valid parameter set is in effect: Error with the
+ * parameter StatusID, Valid and Busy FALSE. */
+void fracctrl_report_no_par(const FracFbStateType *fb, BOOL *valid, BOOL *busy, BOOL *error, UINT *status_id);
+
+/* Outputs when Enable is FALSE: all FALSE, StatusID fracSTAT_DISABLED. */
+void fracctrl_report_disabled(BOOL *valid, BOOL *busy, BOOL *error, UINT *status_id);
+
 /* Clears the edge memory and the parameter state when Enable is FALSE. */
 void fracctrl_disable(FracFbStateType *fb);
 

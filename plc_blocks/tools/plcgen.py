@@ -21,7 +21,8 @@ Supported declarations (the subset the B&R library convention uses):
   .var  VAR CONSTANT  Name : Type := literal;  END_VAR
   .fun  FUNCTION_BLOCK Name  VAR_INPUT / VAR_OUTPUT / VAR  ...  END_VAR  END_FUNCTION_BLOCK
   Types: the IEC elementary types, declared names, ARRAY[lo..hi] OF Type
-  (bounds are integers or declared constants), STRING[n].
+  (bounds are integers or declared constants), STRING[n], REFERENCE TO Type
+  (a C pointer: caller-owned data such as parameter tables).
   Comments (* ... *) after a declaration become the C comment.
 """
 import os
@@ -33,7 +34,7 @@ IEC_TYPES = {"BOOL", "SINT", "USINT", "INT", "UINT", "DINT", "UDINT", "REAL", "L
 INTEGER_TYPES = {"SINT", "USINT", "INT", "UINT", "DINT", "UDINT"}
 KEYWORDS = {"TYPE", "END_TYPE", "STRUCT", "END_STRUCT", "VAR", "VAR_INPUT", "VAR_OUTPUT",
             "VAR_IN_OUT", "END_VAR", "CONSTANT", "FUNCTION_BLOCK", "END_FUNCTION_BLOCK",
-            "ARRAY", "OF", "STRING"}
+            "ARRAY", "OF", "STRING", "REFERENCE", "TO"}
 
 
 class GenError(Exception):
@@ -163,6 +164,13 @@ class Parser:
             if inner:
                 raise self.err("nested ARRAY ... OF ARRAY is not supported; use ARRAY[a..b, c..d]")
             return base, dims
+        if t.text.upper() == "REFERENCE":
+            self.next()
+            self.expect("TO", "after REFERENCE")
+            base, dims = self.type_ref()
+            if dims:
+                raise self.err("REFERENCE TO ARRAY is not supported; use REFERENCE TO the element type")
+            return base + " *", []
         if t.text.upper() == "STRING":
             self.next()
             self.expect("[")
@@ -225,6 +233,8 @@ class Parser:
         elif t.text == "(":
             self.next()
             decl["kind"] = "enum"
+            more = self.comment()
+            decl["doc"] = (doc + " " + more).strip()
             values, nextval = [], 0
             while True:
                 en = self.ident("enumerator")

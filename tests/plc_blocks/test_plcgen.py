@@ -63,6 +63,7 @@ FUN = """FUNCTION_BLOCK Gain (*a gain*)
 	END_VAR
 	VAR
 		Acc : Real;
+		pTab : REFERENCE TO LREAL;
 	END_VAR
 END_FUNCTION_BLOCK
 """
@@ -108,7 +109,8 @@ class GoodDeclarations(unittest.TestCase):
         body = re.search(r"typedef struct Gain \{\n(.*?)\} Gain_typ;", self.h, re.S).group(1)
         decls = [l.split(";")[0].strip() for l in body.splitlines() if ";" in l]
         self.assertEqual(decls, ["BOOL Enable", "GainParType Parameters", "REAL U", "plcstring Name[11]",
-                                 "REAL Y", "ModeEnum Mode", "Counts N", "Real Acc"])
+                                 "REAL Y", "ModeEnum Mode", "Counts N", "Real Acc",
+                                 "LREAL * pTab"])
         self.assertIn("void Gain(struct Gain* inst);", self.h)
 
     def test_enum_values_continue_after_explicit_ones(self):
@@ -166,6 +168,9 @@ class MalformedDeclarations(unittest.TestCase):
     def test_initial_value_in_block(self):
         self.reject(r"initial value for 'U' is not supported",
                     **{"Lib.fun": FUN.replace("U : REAL;", "U : REAL := 1.0;")})
+
+    def test_reference_without_to(self):
+        self.reject(r"expected 'TO' after REFERENCE", **{"Lib.fun": FUN.replace("REFERENCE TO LREAL", "REFERENCE LREAL")})
 
     def test_unterminated_comment(self):
         self.reject(r"unterminated comment", **{"Lib.typ": TYP.replace("(*C type*)", "(*C type")})

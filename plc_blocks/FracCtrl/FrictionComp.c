@@ -1,0 +1,58 @@
+/*
+ * FrictionComp - static friction compensation (FracCtrl.fun) on
+ * frac_friction (frac/friction.h): seed 004 (5.2)-(5.4) with sgn replaced
+ * by tanh(K v) as the thesis implements it (Table 8.6: K = 60). Exp. A/B
+ * add the estimate to the PD torque, (5.1). Parameters map onto
+ * frac_friction_init, Velocity onto frac_friction_eval. Cost per call: one
+ * tanh (plus exp and pow for Stribeck).
+ */
+#include "FracCtrl.h"
+#include "fracctrl_status.h"
+#include "frac/friction.h"
+
+typedef char friction_check_model[((int)fracFRICTION_LINEAR == (int)FRAC_FRICTION_LINEAR
+    && (int)fracFRICTION_ASYMMETRIC == (int)FRAC_FRICTION_ASYMMETRIC && (int)fracFRICTION_STRIBECK == (int)FRAC_FRICTION_STRIBECK) ? 1 : -1];
+
+void FrictionComp(struct FrictionComp* inst)
+{
+    const FrictionCompParType *p = &inst->Parameters;
+    int enable_edge, st;
+    frac_real tau;
+
+    if (!inst->Enable) {
+        fracctrl_disable(&inst->Fb);
+        fracctrl_report_disabled(&inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
+        inst->Torque = 0.0f;
+        return;
+    }
+    if (fracctrl_load_edge(&inst->Fb, inst->Enable, inst->Update, &enable_edge)) {
+        frac_friction fresh;
+        frac_friction_params fp;
+        fp.model = (int)p->Model;
+        fp.k = (frac_real)p->K;
+        fp.b1 = (frac_real)p->B1;
+        fp.b0 = (frac_real)p->B0;
+        fp.b1n = (frac_real)p->B1n;
+        fp.b1p = (frac_real)p->B1p;
+        fp.b0n = (frac_real)p->B0n;
+        fp.b0p = (frac_real)p->B0p;
+        fp.b1s = (frac_real)p->B1s;
+        fp.b2s = (frac_real)p->B2s;
+        fp.b3s = (frac_real)p->B3s;
+        fp.v_s = (frac_real)p->Vs;
+        fp.delta = (frac_real)p->Delta;
+        st = frac_friction_init(&fresh, &fp);
+        fracctrl_par_result(&inst->Fb, fracctrl_status_id(st), enable_edge);
+        if (st == FRAC_OK) {
+            inst->Friction = fresh;
+        }
+    }
+    if (!inst->Fb.ParOk) {
+        fracctrl_report_no_par(&inst->Fb, &inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
+        inst->Torque = 0.0f;
+        return;
+    }
+    st = frac_friction_eval(&inst->Friction, (frac_real)inst->Velocity, &tau);
+    inst->Torque = (REAL)tau;
+    fracctrl_report(&inst->Fb, st, &inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
+}

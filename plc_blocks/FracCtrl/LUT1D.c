@@ -1,0 +1,54 @@
+/*
+ * LUT1D - 1-D lookup table block (FracCtrl.fun) on frac_lut1 (frac/lut.h).
+ *
+ * Seed 004 stores the feedforward trajectories as tables interpolated every
+ * PLC cycle (thesis Sec. 5.1, 6.4; notes 004b 4.5). The body maps
+ * Parameters onto frac_lut1_init / frac_lut1_init_uniform and X onto
+ * frac_lut1_eval; all numerics are libfrac's. A new parameter set is built
+ * in a separate object and replaces the one in effect only if it is valid.
+ * Cost per call: one frac_lut1_eval (O(1) on a uniform grid or a cached
+ * segment, O(log N) otherwise).
+ */
+#include "FracCtrl.h"
+#include "fracctrl_status.h"
+#include "frac/lut.h"
+
+/* The IEC enumerations carry libfrac's values (checked at compile time). */
+typedef char lut1d_check_interp[((int)fracINTERP_LINEAR == (int)FRAC_LUT_LINEAR && (int)fracINTERP_CUBIC == (int)FRAC_LUT_CUBIC) ? 1 : -1];
+typedef char lut1d_check_range[((int)fracRANGE_CLAMP == (int)FRAC_LUT_CLAMP && (int)fracRANGE_EXTRAPOLATE == (int)FRAC_LUT_EXTRAPOLATE) ? 1 : -1];
+
+void LUT1D(struct LUT1D* inst)
+{
+    const LUT1DParType *p = &inst->Parameters;
+    int enable_edge, st;
+    frac_real y;
+
+    if (!inst->Enable) {
+        fracctrl_disable(&inst->Fb);
+        fracctrl_report_disabled(&inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
+        inst->Y = 0.0f;
+        return;
+    }
+    if (fracctrl_load_edge(&inst->Fb, inst->Enable, inst->Update, &enable_edge)) {
+        frac_lut1 fresh;
+        if (p->pX) {
+            st = frac_lut1_init(&fresh, p->pX, p->pY, (size_t)p->N, (int)p->Interpolation, (int)p->Range,
+                                p->pSlopes);
+        } else {
+            st = frac_lut1_init_uniform(&fresh, (frac_real)p->X0, (frac_real)p->Dx, p->pY, (size_t)p->N,
+                                        (int)p->Interpolation, (int)p->Range, p->pSlopes);
+        }
+        fracctrl_par_result(&inst->Fb, fracctrl_status_id(st), enable_edge);
+        if (st == FRAC_OK) {
+            inst->Lut = fresh;
+        }
+    }
+    if (!inst->Fb.ParOk) {
+        fracctrl_report_no_par(&inst->Fb, &inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
+        inst->Y = 0.0f;
+        return;
+    }
+    st = frac_lut1_eval(&inst->Lut, (frac_real)inst->X, &y);
+    inst->Y = (REAL)y;
+    fracctrl_report(&inst->Fb, st, &inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
+}
