@@ -1,0 +1,155 @@
+/* Command-line handling and the reactive loop of the rig executables. */
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include "app_common.h"
+
+double app_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static const char common_usage[] =
+    "  --bus SPEC          socketcan:IFACE (default socketcan:vcan0) or udp:PORT:SLOT:NODES\n"
+    "  --scenario FILE     key = value scenario file (see docs/hil.md)\n"
+    "  --set KEY=VALUE     override one scenario key (repeatable)\n"
+    "  --idle-exit S       exit after S seconds without a frame (default 2)\n"
+    "  --help              this text\n";
+
+static void need(int i, int argc, const char *opt)
+{
+    if (i + 1 >= argc) {
+        fprintf(stderr, "%s needs a value\n", opt);
+        exit(2);
+    }
+}
+
+void app_parse(int argc, char **argv, struct app_opts *o, const char *usage)
+{
+    int i, line;
+    memset(o, 0, sizeof *o);
+    o->bus = "socketcan:vcan0";
+    o->idle_exit = 2.0;
+    o->cycles = -1;
+    hil_rig_config_default(&o->cfg);
+    for (i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            printf("%s%s", usage, common_usage);
+            exit(0);
+        } else if (strcmp(a, "--bus") == 0) {
+            need(i, argc, a);
+            o->bus = argv[++i];
+        } else if (strcmp(a, "--scenario") == 0) {
+            int st;
+            need(i, argc, a);
+            st = hil_rig_config_load(&o->cfg, argv[++i], &line);
+            if (st != HIL_OK) {
+                fprintf(stderr, "%s: %s (line %d)\n", argv[i], hil_status_str(st), line);
+                exit(2);
+            }
+        } else if (strcmp(a, "--set") == 0) {
+            char buf[256], *eq;
+            need(i, argc, a);
+            snprintf(buf, sizeof buf, "%s", argv[++i]);
+            eq = strchr(buf, '=');
+            if (!eq) {
+                fprintf(stderr, "--set wants KEY=VALUE\n");
+                exit(2);
+            }
+            *eq = '\0';
+            if (hil_rig_config_set(&o->cfg, buf, eq + 1) != HIL_OK) {
+                fprintf(stderr, "--set %s: unknown key or bad value\n", argv[i]);
+                exit(2);
+            }
+        } else if (strcmp(a, "--idle-exit") == 0) {
+            char *end;
+            need(i, argc, a);
+            o->idle_exit = strtod(argv[++i], &end);
+            if (*end || !(o->idle_exit > 0.0)) {
+                fprintf(stderr, "--idle-exit wants seconds > 0\n");
+                exit(2);
+            }
+        } else if (strcmp(a, "--csv") == 0) {
+            need(i, argc, a);
+            o->csv = argv[++i];
+        } else if (strcmp(a, "--out") == 0) {
+            need(i, argc, a);
+            o->out = argv[++i];
+        } else if (strcmp(a, "--cycles") == 0) {
+            char *end;
+            need(i, argc, a);
+            o->cycles = strtol(argv[++i], &end, 10);
+            if (*end || o->cycles < 1) {
+                fprintf(stderr, "--cycles wants an integer >= 1\n");
+                exit(2);
+            }
+        } else {
+            fprintf(stderr, "unknown option %s (try --help)\n", a);
+            exit(2);
+        }
+    }
+}
+
+void app_open_bus(struct hil_transport *t, const char *spec)
+{
+    int st = hil_transport_open(t, spec);
+    if (st != HIL_OK) {
+        fprintf(stderr, "cannot open bus %s: %s\n", spec, hil_status_str(st));
+        exit(1);
+    }
+}
+
+int app_send_all(struct hil_transport *t, const struct hil_out *out)
+{
+    int i, failed = 0;
+    for (i = 0; i < out->n; i++)
+        if (hil_transport_send(t, &out->f[i]) != HIL_OK)
+            failed++;
+    return failed;
+}
+
+void app_print_stats(FILE *f, const char *name, const struct hil_transport *t,
+                     const struct hil_rx_stats *rx)
+{
+    fprintf(f, "HIL_STATS node=%s tx=%llu tx_errors=%llu rx=%llu rx_invalid=%llu", name,
+            (unsigned long long)t->tx_frames, (unsigned long long)t->tx_errors,
+            (unsigned long long)t->rx_frames, (unsigned long long)t->rx_invalid);
+    if (rx)
+        fprintf(f, " accepted=%llu other=%llu unknown_id=%llu bad_dlc=%llu bad_value=%llu",
+                (unsigned long long)rx->accepted, (unsigned long long)rx->other,
+                (unsigned long long)rx->unknown_id, (unsigned long long)rx->bad_dlc,
+                (unsigned long long)rx->bad_value);
+    fputc('\n', f);
+    fflush(f);
+}
+
+int app_run_reactive(struct hil_transport *t, app_handler h, void *node, const struct hil_out *boot,
+                     double idle_exit, const char *name, const struct hil_rx_stats *rx)
+{
+    double last = app_now();
+    int failed = app_send_all(t, boot);
+    for (;;) {
+        struct hil_can_frame f;
+        struct hil_out out;
+        int st = hil_transport_recv(t, &f, 100000);
+        if (st == HIL_E_TIMEOUT) {
+            if (app_now() - last > idle_exit)
+                break;
+            continue;
+        }
+        last = app_now();
+        if (st != HIL_OK) {
+            if (st == HIL_E_IO)
+                break;
+            continue;
+        }
+        out.n = 0;
+        h(node, &f, &out);
+        failed += app_send_all(t, &out);
+    }
+    app_print_stats(stdout, name, t, rx);
+    return failed ? 1 : 0;
+}

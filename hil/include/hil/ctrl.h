@@ -1,0 +1,78 @@
+/* The controller node: NMT master, SYNC producer and the control law, seen
+ * from the bus exactly as the PLC's Cyclic #1 task.
+ *
+ * Cycle k: hil_ctrl_tick() sends SYNC(k) (preceded at k = 0 by NMT "start
+ * all"); the drive answers with TPDO1/TPDO2 (shaft at t_k); as soon as both
+ * are in, the law runs and the RPDO (controlword + target torque) goes out.
+ * If the cycle ends without them, hil_ctrl_deadline() runs the law on the last
+ * values received (counted in missed_inputs), as a PLC task does when its
+ * inputs are not refreshed.
+ *
+ * Law "pd" (a TEST law until the plc_blocks controllers are wired in):
+ *     tau = kp (r - theta) + kd (r' - theta') - k_tip * psi'_imu
+ * with r(t) the cos^2 point-to-point move of amplitude `move` [rad] over
+ * `move_time` [s] starting at `move_start` [s].
+ *
+ * Drive enabling per CiA 402: controlword 0x06, 0x07, then 0x0F from cycle 3.
+ * IMU watchdog: when no new IMU reading (sequence number) arrived for more
+ * than imu_timeout cycles while enabled, the node enters its fault reaction:
+ * EMCY 0x7300 once, and the torque command ramps linearly from its last value
+ * to 0 over ramp_time (default 8.4 ms: 7 cycles, inside the 10 ms bound). A
+ * fresh reading ends the reaction (EMCY 0x0000, error reset) and the law
+ * resumes. */
+#ifndef HIL_CTRL_H
+#define HIL_CTRL_H
+#include "hil/node.h"
+
+struct hil_ctrl_params {
+    double T;             /* cycle [s] > 0 */
+    double kp, kd, k_tip; /* gains [Nm/rad], [Nm s/rad], [Nm s/rad] */
+    double move, move_start, move_time; /* reference move [rad], [s], [s] (> 0) */
+    unsigned imu_timeout; /* cycles, >= 1 */
+    double ramp_time;     /* fault ramp to zero torque [s] > 0 */
+    double torque_max;    /* command clamp [Nm] > 0 */
+};
+
+struct hil_ctrl_signals {   /* what the controller saw and did in one cycle */
+    double t, ref, torque_cmd, theta, omega, imu_rate;
+    uint16_t statusword;
+    int fault;
+};
+
+struct hil_ctrl {
+    struct hil_ctrl_params p;
+    struct hil_rx_stats rx;
+    uint64_t cycle;           /* cycles started (SYNCs sent) */
+    uint8_t sync_counter;
+    int have_tpdo1, have_tpdo2, commanded;
+    uint16_t statusword;
+    double theta, omega, imu_rate, imu_acc[3];
+    int imu_seen;
+    uint8_t imu_seq;
+    uint64_t imu_last_cycle;
+    uint64_t imu_readings;
+    int fault;
+    double ramp_from;
+    uint64_t fault_cycle;
+    struct hil_ctrl_signals sig;
+    uint64_t missed_inputs, emcy_sent, emcy_received, faults;
+    uint8_t hb_state[128];    /* last heartbeat state per node, 0xFF = none */
+};
+
+/* Test-law defaults for the rigid test plant: kp 400, kd 60, k_tip 0,
+ * move 0.5 rad from 0.1 s over 0.5 s, imu_timeout 3, ramp 8.4 ms,
+ * torque_max 251 Nm, T 1.2 ms. */
+void hil_ctrl_params_default(struct hil_ctrl_params *p);
+int hil_ctrl_init(struct hil_ctrl *c, const struct hil_ctrl_params *p);
+/* Starts cycle k = c->cycle: NMT at k = 0, SYNC(k). */
+int hil_ctrl_tick(struct hil_ctrl *c, struct hil_out *out);
+/* Consumes one bus frame; same contract as hil_drive_on_frame. */
+int hil_ctrl_on_frame(struct hil_ctrl *c, const struct hil_can_frame *f, struct hil_out *out);
+/* Ends the cycle: runs the law on stale inputs if it has not run yet. */
+int hil_ctrl_deadline(struct hil_ctrl *c, struct hil_out *out);
+/* Sends NMT "stop all". */
+int hil_ctrl_stop(struct hil_ctrl *c, struct hil_out *out);
+/* Reference r(t) and r'(t) of the test law. */
+void hil_ctrl_reference(const struct hil_ctrl_params *p, double t, double *r, double *rd);
+
+#endif

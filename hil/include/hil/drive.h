@@ -1,0 +1,79 @@
+/* Emulated servo drive (ACOPOS in torque mode, seed 004 sec. 8.2) as a CiA 402
+ * node in cyclic synchronous torque mode.
+ *
+ * Per SYNC k the drive
+ *   1. sends TPDO1 (statusword, position actual) and TPDO2 (velocity actual,
+ *      torque actual) from the shaft state at t_k (last RIG_MOTOR frame);
+ *   2. latches the latest RPDO target torque into its delay line; the command
+ *      the controller sent during cycle j acts on the shaft over
+ *      [t_{j+delay}, t_{j+delay+1}) (seed 004: 4 samples at T = 1.2 ms);
+ *   3. limits it: peak torque while the thermal estimate (first-order filter
+ *      of tau^2, time constant thermal_tau) is below rated^2, rated torque
+ *      otherwise (i^2 t protection; statusword bit 11 while limiting);
+ *   4. runs the current loop, a first-order lag
+ *      tau(t) = c + (tau0 - c) exp(-t / tau_current), over the cycle and sends
+ *      RIG_TORQUE(tau(t_k), tau(t_{k+1})) to the plant (ZOH on the command).
+ * Torque is applied only in "operation enabled"; any other state commands 0.
+ * No RPDO for rpdo_timeout SYNCs while enabled -> FAULT, EMCY 0x8250.
+ * NMT start/stop/pre-op/reset are obeyed; heartbeat every heartbeat_syncs. */
+#ifndef HIL_DRIVE_H
+#define HIL_DRIVE_H
+#include "hil/node.h"
+
+#define HIL_DRIVE_MAX_DELAY 32
+
+enum hil_cia402_state {
+    HIL_CIA402_SWITCH_ON_DISABLED = 0,
+    HIL_CIA402_READY_TO_SWITCH_ON,
+    HIL_CIA402_SWITCHED_ON,
+    HIL_CIA402_OPERATION_ENABLED,
+    HIL_CIA402_QUICK_STOP_ACTIVE,
+    HIL_CIA402_FAULT
+};
+
+struct hil_drive_params {
+    double T;              /* controller cycle [s], > 0 */
+    unsigned delay;        /* torque path delay in cycles, 1..HIL_DRIVE_MAX_DELAY */
+    double tau_current;    /* current-loop time constant [s], >= 0 (0: ideal) */
+    double torque_rated;   /* [Nm] driven side, > 0 */
+    double torque_peak;    /* [Nm] driven side, >= torque_rated */
+    double thermal_tau;    /* [s] > 0 */
+    unsigned rpdo_timeout; /* SYNCs without RPDO before FAULT while enabled, >= 1 */
+    unsigned heartbeat_syncs; /* heartbeat period in SYNCs, >= 1 */
+};
+
+struct hil_drive {
+    struct hil_drive_params p;
+    struct hil_rx_stats rx;
+    uint8_t nmt;
+    enum hil_cia402_state state;
+    uint16_t last_controlword;
+    double cmd_latest;                    /* last target torque received [Nm] */
+    double line[HIL_DRIVE_MAX_DELAY];     /* latched commands, newest first */
+    double tau_act;                       /* current-loop output at t_k [Nm] */
+    double thermal;                       /* filtered tau^2 [Nm^2] */
+    int limiting;
+    double theta, omega;                  /* shaft state from the plant */
+    unsigned since_rpdo, since_heartbeat;
+    uint64_t syncs, emcy_sent;
+};
+
+/* Defaults of the thesis set-up: T 1.2 ms, delay 4, tau_current 0.25 ms
+ * (5 current-controller cycles of 50 us), rated 95.7 Nm, peak 251 Nm,
+ * thermal_tau 1 s, rpdo_timeout 3, heartbeat every 84 SYNCs (~100 ms). */
+void hil_drive_params_default(struct hil_drive_params *p);
+
+/* Validates p and resets the node (NMT boot-up -> pre-operational, CiA 402
+ * "switch on disabled"); appends the boot-up heartbeat to out.
+ * Returns HIL_OK or HIL_E_ARG (node untouched). */
+int hil_drive_init(struct hil_drive *d, const struct hil_drive_params *p, struct hil_out *out);
+
+/* Consumes one bus frame. Returns HIL_OK when consumed, HIL_E_UNKNOWN_ID for
+ * frames of other nodes (counted in rx.other when they are in the
+ * dictionary), or the negative validation code (frame ignored). */
+int hil_drive_on_frame(struct hil_drive *d, const struct hil_can_frame *f, struct hil_out *out);
+
+/* CiA 402 statusword of the current state. */
+uint16_t hil_drive_statusword(const struct hil_drive *d);
+
+#endif

@@ -1,0 +1,89 @@
+/* The whole bench in one process, in lockstep (simulated time, deterministic,
+ * as fast as the host runs): drive, IMU, plant and controller nodes on an
+ * in-memory bus that behaves like CAN (every frame reaches every node except
+ * its sender, in transmission order). The nodes are the same objects the
+ * node executables run over SocketCAN or UDP.
+ *
+ * Cycle k: the controller's tick (NMT at k = 0, SYNC), then frames are
+ * delivered until the bus is idle, then the controller's deadline (law on
+ * stale inputs if the drive's TPDOs were lost) and delivery until idle again.
+ * Every delivered frame is written to the candump log with time
+ * t_k + i * 1 us (i: position in the cycle) so the log keeps the bus order.
+ *
+ * Effects on the bus: frame_loss drops each PDO (not NMT/SYNC/EMCY/heartbeat,
+ * not the rig-internal physics frames) with that probability, seeded by
+ * bus_seed; dropped frames are neither delivered nor logged (counted).
+ * inject_every > 0 puts two malformed frames on the bus every inject_every
+ * cycles (the drive RPDO with DLC 5 and the unknown identifier 0x555), which
+ * every node must count and ignore. imu_dropout_start/end: every IMU PDO
+ * sent in that window of simulated time is lost (the "IMU frames stop" fault). */
+#ifndef HIL_RIG_H
+#define HIL_RIG_H
+#include <stdio.h>
+#include "hil/ctrl.h"
+#include "hil/drive.h"
+#include "hil/imu.h"
+#include "hil/plant.h"
+#include "hil/rng.h"
+
+#define HIL_RIG_QUEUE 256
+
+struct hil_rig_config {
+    char scenario[128];        /* scenario name or file, for the metadata */
+    char plant[16];            /* "rigid" */
+    double duration;           /* simulated seconds > 0 */
+    double frame_loss;         /* [0, 1) */
+    uint64_t bus_seed;
+    unsigned inject_every;     /* 0: off */
+    double imu_dropout_start, imu_dropout_end; /* IMU PDOs lost in [start, end) [s] */
+    struct hil_drive_params drive;
+    struct hil_imu_params imu;
+    struct hil_plant_params plant_p;
+    struct hil_ctrl_params ctrl;
+};
+
+struct hil_rig_stats {
+    uint64_t cycles, frames_sent, frames_lost, frames_delivered, frames_logged;
+    uint64_t injected;
+};
+
+struct hil_rig {
+    struct hil_rig_config cfg;
+    struct hil_drive drive;
+    struct hil_imu imu;
+    struct hil_plant plant;
+    struct hil_ctrl ctrl;
+    struct hil_rng bus_rng;
+    struct hil_can_frame q[HIL_RIG_QUEUE];
+    int q_from[HIL_RIG_QUEUE];
+    int q_head, q_len;
+    unsigned slot;             /* frames in the current cycle */
+    FILE *log, *csv;
+    struct hil_rig_stats st;
+};
+
+/* Defaults: the thesis delays (hil_*_params_default), plant "rigid",
+ * 1 s, no loss, no injection, bus seed 1. */
+void hil_rig_config_default(struct hil_rig_config *c);
+
+/* Reads "key = value" lines ('#' comments) into c, on top of what it holds.
+ * Keys: T (sets the cycle of every node), duration, plant, frame_loss,
+ * bus_seed, inject_every, imu_dropout_start, imu_dropout_end, and the fields
+ * of the node parameter structs as drive.*, imu.*, plant.*, ctrl.*. Returns HIL_OK, HIL_E_IO, or HIL_E_FORMAT with *line_no set to
+ * the first bad line (unknown key, bad number). */
+int hil_rig_config_load(struct hil_rig_config *c, const char *path, int *line_no);
+/* Sets one key from text; HIL_OK, HIL_E_UNKNOWN_ID or HIL_E_FORMAT. */
+int hil_rig_config_set(struct hil_rig_config *c, const char *key, const char *value);
+
+/* Initialises every node; log and csv may be NULL. The CSV header is written
+ * here. Returns HIL_OK or HIL_E_ARG (a parameter failed validation). */
+int hil_rig_init(struct hil_rig *r, const struct hil_rig_config *c, FILE *log, FILE *csv);
+/* Runs one controller cycle. HIL_OK, or HIL_E_FULL if the bus queue overflowed. */
+int hil_rig_cycle(struct hil_rig *r);
+/* Runs round(duration / T) cycles, then NMT stop. */
+int hil_rig_run(struct hil_rig *r);
+/* Writes the run metadata JSON (scenario, every parameter and effect, seeds,
+ * version, frame counts, node receive counters). */
+int hil_rig_write_meta(const struct hil_rig *r, FILE *f, double wall_s);
+
+#endif

@@ -1,0 +1,217 @@
+/* Controller node with the PD test law; behaviour in hil/ctrl.h. */
+#include <math.h>
+#include <string.h>
+#include "hil/canopen.h"
+#include "hil/ctrl.h"
+
+void hil_ctrl_params_default(struct hil_ctrl_params *p)
+{
+    p->T = 1.2e-3;
+    p->kp = 400.0;
+    p->kd = 60.0;
+    p->k_tip = 0.0;
+    p->move = 0.5;
+    p->move_start = 0.1;
+    p->move_time = 0.5;
+    p->imu_timeout = 3;
+    p->ramp_time = 8.4e-3;
+    p->torque_max = 251.0;
+}
+
+static int fin(double x) { return isfinite(x); }
+
+int hil_ctrl_init(struct hil_ctrl *c, const struct hil_ctrl_params *p)
+{
+    if (!c || !p || !(p->T > 0.0) || !fin(p->T) || !fin(p->kp) || !fin(p->kd) || !fin(p->k_tip) ||
+        !fin(p->move) || !fin(p->move_start) || !(p->move_time > 0.0) || !fin(p->move_time) ||
+        p->imu_timeout < 1 || !(p->ramp_time > 0.0) || !fin(p->ramp_time) ||
+        !(p->torque_max > 0.0) || !fin(p->torque_max))
+        return HIL_E_ARG;
+    memset(c, 0, sizeof *c);
+    c->p = *p;
+    memset(c->hb_state, 0xFF, sizeof c->hb_state);
+    return HIL_OK;
+}
+
+/* cos^2 point-to-point profile: r = A sin^2(pi s / (2 t_m)), s in [0, t_m]. */
+void hil_ctrl_reference(const struct hil_ctrl_params *p, double t, double *r, double *rd)
+{
+    double s = t - p->move_start;
+    if (s <= 0.0) {
+        *r = 0.0;
+        *rd = 0.0;
+    } else if (s >= p->move_time) {
+        *r = p->move;
+        *rd = 0.0;
+    } else {
+        double w = M_PI / p->move_time;
+        *r = p->move * 0.5 * (1.0 - cos(w * s));
+        *rd = p->move * 0.5 * w * sin(w * s);
+    }
+}
+
+static void send_emcy(struct hil_ctrl *c, uint16_t code, struct hil_out *out)
+{
+    struct hil_emcy e;
+    struct hil_can_frame f;
+    memset(&e, 0, sizeof e);
+    e.code = code;
+    e.error_register = code ? 0x01 : 0x00;
+    if (hil_co_emcy_encode(&f, HIL_NODE_CTRL, &e) == HIL_OK && hil_out_push(out, &f) == HIL_OK)
+        c->emcy_sent++;
+}
+
+static double clamp(double x, double m) { return x > m ? m : (x < -m ? -m : x); }
+
+static void run_law(struct hil_ctrl *c, struct hil_out *out)
+{
+    struct hil_drive_rpdo r;
+    struct hil_can_frame f;
+    double t = (double)(c->cycle - 1) * c->p.T, ref, refd, u = 0.0;
+    int64_t q;
+    int enabled = (c->statusword & 0x006Fu) == 0x0027u;
+    uint64_t k = c->cycle - 1;
+
+    hil_ctrl_reference(&c->p, t, &ref, &refd);
+    if (enabled && c->imu_seen && k - c->imu_last_cycle > c->p.imu_timeout && !c->fault) {
+        c->fault = 1;
+        c->faults++;
+        c->fault_cycle = k;
+        c->ramp_from = c->sig.torque_cmd;
+        send_emcy(c, HIL_EMCY_SENSOR, out);
+    }
+    if (c->fault) {
+        double s = (double)(k - c->fault_cycle + 1) * c->p.T / c->p.ramp_time;
+        u = s >= 1.0 ? 0.0 : c->ramp_from * (1.0 - s);
+    } else if (enabled) {
+        u = c->p.kp * (ref - c->theta) + c->p.kd * (refd - c->omega) - c->p.k_tip * c->imu_rate;
+    }
+    u = clamp(u, c->p.torque_max);
+    r.controlword = k == 0 ? HIL_CW_SHUTDOWN : (k == 1 ? HIL_CW_SWITCH_ON : HIL_CW_ENABLE_OP);
+    hil_co_quantize(u, HIL_TORQUE_LSB, INT32_MIN, INT32_MAX, &q);
+    r.torque_mnm = (int32_t)q;
+    if (hil_co_drive_rpdo_encode(&f, &r) == HIL_OK)
+        hil_out_push(out, &f);
+    c->commanded = 1;
+    c->sig.t = t;
+    c->sig.ref = ref;
+    c->sig.torque_cmd = u;
+    c->sig.theta = c->theta;
+    c->sig.omega = c->omega;
+    c->sig.imu_rate = c->imu_rate;
+    c->sig.statusword = c->statusword;
+    c->sig.fault = c->fault;
+}
+
+int hil_ctrl_tick(struct hil_ctrl *c, struct hil_out *out)
+{
+    struct hil_can_frame f;
+    if (!c || !out)
+        return HIL_E_ARG;
+    if (c->cycle == 0 && hil_co_nmt_encode(&f, HIL_NMT_START, 0) == HIL_OK)
+        hil_out_push(out, &f);
+    c->sync_counter = (uint8_t)(c->sync_counter % 240u + 1u);
+    if (hil_co_sync_encode(&f, c->sync_counter) == HIL_OK)
+        hil_out_push(out, &f);
+    c->cycle++;
+    c->have_tpdo1 = c->have_tpdo2 = c->commanded = 0;
+    return HIL_OK;
+}
+
+int hil_ctrl_deadline(struct hil_ctrl *c, struct hil_out *out)
+{
+    if (!c || !out || c->cycle == 0)
+        return HIL_E_ARG;
+    if (!c->commanded) {
+        c->missed_inputs++;
+        run_law(c, out);
+    }
+    return HIL_OK;
+}
+
+int hil_ctrl_stop(struct hil_ctrl *c, struct hil_out *out)
+{
+    struct hil_can_frame f;
+    if (!c || !out)
+        return HIL_E_ARG;
+    hil_co_nmt_encode(&f, HIL_NMT_STOP, 0);
+    return hil_out_push(out, &f);
+}
+
+static void on_imu(struct hil_ctrl *c, const struct hil_imu_tpdo *t, int which, struct hil_out *out)
+{
+    if (which == 1) {
+        c->imu_rate = t->xyz[2] * HIL_GYRO_LSB;
+        if (!c->imu_seen || t->seq != c->imu_seq) {
+            c->imu_seen = 1;
+            c->imu_seq = t->seq;
+            c->imu_last_cycle = c->cycle ? c->cycle - 1 : 0;
+            c->imu_readings++;
+            if (c->fault) {
+                c->fault = 0;
+                send_emcy(c, HIL_EMCY_NO_ERROR, out);
+            }
+        }
+    } else {
+        int i;
+        for (i = 0; i < 3; i++)
+            c->imu_acc[i] = t->xyz[i] * HIL_ACC_LSB;
+    }
+}
+
+int hil_ctrl_on_frame(struct hil_ctrl *c, const struct hil_can_frame *f, struct hil_out *out)
+{
+    int st;
+    if (!c || !f || !out)
+        return HIL_E_ARG;
+    st = hil_rx_screen(&c->rx, f);
+    if (st != HIL_OK)
+        return st;
+    switch (f->id) {
+    case HIL_COB_TPDO1(HIL_NODE_DRIVE): {
+        struct hil_drive_tpdo1 t;
+        hil_co_drive_tpdo1_decode(f, &t);
+        c->rx.accepted++;
+        c->statusword = t.statusword;
+        c->theta = t.position_inc * (2.0 * M_PI / HIL_ENC_COUNTS_PER_REV);
+        c->have_tpdo1 = 1;
+        break;
+    }
+    case HIL_COB_TPDO2(HIL_NODE_DRIVE): {
+        struct hil_drive_tpdo2 t;
+        hil_co_drive_tpdo2_decode(f, &t);
+        c->rx.accepted++;
+        c->omega = t.velocity_urads * HIL_VEL_LSB;
+        c->have_tpdo2 = 1;
+        break;
+    }
+    case HIL_COB_TPDO1(HIL_NODE_IMU):
+    case HIL_COB_TPDO2(HIL_NODE_IMU): {
+        struct hil_imu_tpdo t;
+        int which = f->id == HIL_COB_TPDO1(HIL_NODE_IMU) ? 1 : 2;
+        hil_co_imu_decode(f, which, &t);
+        c->rx.accepted++;
+        on_imu(c, &t, which, out);
+        return HIL_OK;
+    }
+    default: {
+        uint8_t node, state;
+        struct hil_emcy e;
+        if (hil_co_heartbeat_decode(f, &node, &state) == HIL_OK) {
+            c->rx.accepted++;
+            c->hb_state[node] = state;
+            return HIL_OK;
+        }
+        if (hil_co_emcy_decode(f, &node, &e) == HIL_OK && node != HIL_NODE_CTRL) {
+            c->rx.accepted++;
+            c->emcy_received++;
+            return HIL_OK;
+        }
+        c->rx.other++;
+        return HIL_E_UNKNOWN_ID;
+    }
+    }
+    if (c->cycle > 0 && c->have_tpdo1 && c->have_tpdo2 && !c->commanded)
+        run_law(c, out);
+    return HIL_OK;
+}

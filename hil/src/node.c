@@ -1,0 +1,66 @@
+/* Frame dictionary check and output buffer shared by the nodes. */
+#include "hil/node.h"
+#include "hil/canopen.h"
+
+int hil_out_push(struct hil_out *out, const struct hil_can_frame *f)
+{
+    if (!out || !f)
+        return HIL_E_ARG;
+    if (out->n < 0 || out->n >= HIL_OUT_MAX)
+        return HIL_E_FULL;
+    out->f[out->n++] = *f;
+    return HIL_OK;
+}
+
+/* Required DLC of every identifier the rig uses, or -1 when unknown. */
+static int dict_dlc(uint32_t id)
+{
+    if (id == HIL_COB_NMT)
+        return 2;
+    if (id == HIL_COB_SYNC)
+        return 1;
+    if (id >= HIL_COB_EMCY(1) && id <= HIL_COB_EMCY(127))
+        return 8;
+    if (id >= HIL_COB_HEARTBEAT(1) && id <= HIL_COB_HEARTBEAT(127))
+        return 1;
+    switch (id) {
+    case HIL_COB_RPDO1(HIL_NODE_DRIVE): return 6;
+    case HIL_COB_TPDO1(HIL_NODE_DRIVE): return 6;
+    case HIL_COB_TPDO2(HIL_NODE_DRIVE): return 8;
+    case HIL_COB_TPDO1(HIL_NODE_IMU): return 8;
+    case HIL_COB_TPDO2(HIL_NODE_IMU): return 8;
+    case HIL_COB_RIG_TORQUE:
+    case HIL_COB_RIG_MOTOR:
+    case HIL_COB_RIG_TIP:
+    case HIL_COB_RIG_TIPPOS: return 8;
+    default: return -1;
+    }
+}
+
+int hil_dict_check(const struct hil_can_frame *f)
+{
+    int st = hil_can_frame_check(f);
+    int dlc;
+    if (st != HIL_OK)
+        return st;
+    if (f->id & HIL_CAN_EFF_FLAG)
+        return HIL_E_UNKNOWN_ID;
+    dlc = dict_dlc(f->id);
+    if (dlc < 0)
+        return HIL_E_UNKNOWN_ID;
+    return f->dlc == dlc ? HIL_OK : HIL_E_DLC;
+}
+
+int hil_rx_screen(struct hil_rx_stats *s, const struct hil_can_frame *f)
+{
+    int st = hil_dict_check(f);
+    if (!s)
+        return HIL_E_ARG;
+    if (st == HIL_E_UNKNOWN_ID)
+        s->unknown_id++;
+    else if (st == HIL_E_DLC)
+        s->bad_dlc++;
+    else if (st != HIL_OK)
+        s->bad_value++;
+    return st;
+}

@@ -1,0 +1,400 @@
+/* In-process lockstep bench; behaviour in hil/rig.h. */
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
+#include "hil/candump.h"
+#include "hil/canopen.h"
+#include "hil/rig.h"
+
+#ifndef HIL_VERSION
+#define HIL_VERSION "unknown"
+#endif
+
+enum { K_DBL, K_UNS, K_U64 };
+struct key { const char *name; int type; size_t off; };
+#define D(n, f) {n, K_DBL, offsetof(struct hil_rig_config, f)}
+#define U(n, f) {n, K_UNS, offsetof(struct hil_rig_config, f)}
+#define Q(n, f) {n, K_U64, offsetof(struct hil_rig_config, f)}
+static const struct key keys[] = {
+    D("duration", duration), D("frame_loss", frame_loss), Q("bus_seed", bus_seed),
+    U("inject_every", inject_every), D("imu_dropout_start", imu_dropout_start),
+    D("imu_dropout_end", imu_dropout_end),
+    U("drive.delay", drive.delay), D("drive.tau_current", drive.tau_current),
+    D("drive.torque_rated", drive.torque_rated), D("drive.torque_peak", drive.torque_peak),
+    D("drive.thermal_tau", drive.thermal_tau), U("drive.rpdo_timeout", drive.rpdo_timeout),
+    U("drive.heartbeat_syncs", drive.heartbeat_syncs),
+    U("imu.reading_cycles", imu.reading_cycles), D("imu.jitter_prob", imu.jitter_prob),
+    D("imu.gyro_bias", imu.gyro_bias), D("imu.gyro_noise", imu.gyro_noise),
+    D("imu.gyro_quant", imu.gyro_quant), D("imu.acc_bias", imu.acc_bias),
+    D("imu.acc_noise", imu.acc_noise), D("imu.acc_quant", imu.acc_quant),
+    Q("imu.seed", imu.seed), U("imu.heartbeat_acqs", imu.heartbeat_acqs),
+    D("plant.J", plant_p.J), D("plant.b", plant_p.b), D("plant.L", plant_p.L),
+    U("plant.substeps", plant_p.substeps),
+    D("ctrl.kp", ctrl.kp), D("ctrl.kd", ctrl.kd), D("ctrl.k_tip", ctrl.k_tip),
+    D("ctrl.move", ctrl.move), D("ctrl.move_start", ctrl.move_start),
+    D("ctrl.move_time", ctrl.move_time), U("ctrl.imu_timeout", ctrl.imu_timeout),
+    D("ctrl.ramp_time", ctrl.ramp_time), D("ctrl.torque_max", ctrl.torque_max),
+};
+#define NKEYS (sizeof keys / sizeof keys[0])
+
+void hil_rig_config_default(struct hil_rig_config *c)
+{
+    memset(c, 0, sizeof *c);
+    strcpy(c->scenario, "default");
+    strcpy(c->plant, "rigid");
+    c->duration = 1.0;
+    c->bus_seed = 1;
+    hil_drive_params_default(&c->drive);
+    hil_imu_params_default(&c->imu);
+    hil_plant_params_default(&c->plant_p);
+    hil_ctrl_params_default(&c->ctrl);
+}
+
+int hil_rig_config_set(struct hil_rig_config *c, const char *key, const char *value)
+{
+    size_t i;
+    char *end;
+    if (!c || !key || !value)
+        return HIL_E_ARG;
+    if (strcmp(key, "plant") == 0) {
+        if (strcmp(value, "rigid") != 0)
+            return HIL_E_FORMAT;
+        strcpy(c->plant, value);
+        return HIL_OK;
+    }
+    if (strcmp(key, "T") == 0) {
+        double v;
+        errno = 0;
+        v = strtod(value, &end);
+        if (errno || end == value || *end || !(v > 0.0) || !isfinite(v))
+            return HIL_E_FORMAT;
+        c->drive.T = c->plant_p.T = c->ctrl.T = v;
+        return HIL_OK;
+    }
+    for (i = 0; i < NKEYS; i++) {
+        void *p;
+        if (strcmp(key, keys[i].name) != 0)
+            continue;
+        p = (char *)c + keys[i].off;
+        errno = 0;
+        if (keys[i].type == K_DBL) {
+            double v = strtod(value, &end);
+            if (errno || end == value || *end || !isfinite(v))
+                return HIL_E_FORMAT;
+            *(double *)p = v;
+        } else {
+            unsigned long long v;
+            if (!isdigit((unsigned char)value[0]))
+                return HIL_E_FORMAT;
+            v = strtoull(value, &end, 10);
+            if (errno || *end || (keys[i].type == K_UNS && v > 0xFFFFFFFFull))
+                return HIL_E_FORMAT;
+            if (keys[i].type == K_UNS)
+                *(unsigned *)p = (unsigned)v;
+            else
+                *(uint64_t *)p = (uint64_t)v;
+        }
+        return HIL_OK;
+    }
+    return HIL_E_UNKNOWN_ID;
+}
+
+static char *trim(char *s)
+{
+    char *e;
+    while (isspace((unsigned char)*s))
+        s++;
+    e = s + strlen(s);
+    while (e > s && isspace((unsigned char)e[-1]))
+        *--e = '\0';
+    return s;
+}
+
+int hil_rig_config_load(struct hil_rig_config *c, const char *path, int *line_no)
+{
+    FILE *f;
+    char line[256];
+    int n = 0, st = HIL_OK;
+    if (!c || !path)
+        return HIL_E_ARG;
+    if (line_no)
+        *line_no = 0;
+    f = fopen(path, "r");
+    if (!f)
+        return HIL_E_IO;
+    while (fgets(line, sizeof line, f)) {
+        char *hash = strchr(line, '#'), *eq, *k, *v;
+        n++;
+        if (hash)
+            *hash = '\0';
+        k = trim(line);
+        if (!*k)
+            continue;
+        eq = strchr(k, '=');
+        if (!eq) {
+            st = HIL_E_FORMAT;
+            break;
+        }
+        *eq = '\0';
+        v = trim(eq + 1);
+        k = trim(k);
+        if (hil_rig_config_set(c, k, v) != HIL_OK) {
+            st = HIL_E_FORMAT;
+            break;
+        }
+    }
+    fclose(f);
+    if (st != HIL_OK && line_no)
+        *line_no = n;
+    if (st == HIL_OK)
+        snprintf(c->scenario, sizeof c->scenario, "%s", path);
+    return st;
+}
+
+enum { FROM_DRIVE, FROM_IMU, FROM_PLANT, FROM_CTRL, FROM_FOREIGN, NODES = 4 };
+
+static int is_pdo(uint32_t id) { return id >= 0x180u && id < 0x580u; }
+
+static int enqueue(struct hil_rig *r, const struct hil_out *out, int from)
+{
+    double now = (double)(r->ctrl.cycle ? r->ctrl.cycle - 1 : 0) * r->cfg.ctrl.T;
+    int i;
+    for (i = 0; i < out->n; i++) {
+        int at;
+        r->st.frames_sent++;
+        if (from == FROM_IMU && is_pdo(out->f[i].id) && now >= r->cfg.imu_dropout_start &&
+            now < r->cfg.imu_dropout_end) {
+            r->st.frames_lost++;
+            continue;
+        }
+        if (r->cfg.frame_loss > 0.0 && is_pdo(out->f[i].id) &&
+            hil_rng_uniform(&r->bus_rng) < r->cfg.frame_loss) {
+            r->st.frames_lost++;
+            continue;
+        }
+        if (r->q_len >= HIL_RIG_QUEUE)
+            return HIL_E_FULL;
+        at = (r->q_head + r->q_len) % HIL_RIG_QUEUE;
+        r->q[at] = out->f[i];
+        r->q_from[at] = from;
+        r->q_len++;
+    }
+    return HIL_OK;
+}
+
+int hil_rig_init(struct hil_rig *r, const struct hil_rig_config *c, FILE *log, FILE *csv)
+{
+    struct hil_out out, out2;
+    if (!r || !c || !(c->duration > 0.0) || !isfinite(c->duration) ||
+        !(c->frame_loss >= 0.0 && c->frame_loss < 1.0) || c->drive.T != c->ctrl.T ||
+        c->plant_p.T != c->ctrl.T)
+        return HIL_E_ARG;
+    memset(r, 0, sizeof *r);
+    r->cfg = *c;
+    out.n = 0;
+    out2.n = 0;
+    if (hil_drive_init(&r->drive, &c->drive, &out) != HIL_OK ||
+        hil_imu_init(&r->imu, &c->imu, &out2) != HIL_OK ||
+        hil_plant_init(&r->plant, &c->plant_p) != HIL_OK || hil_ctrl_init(&r->ctrl, &c->ctrl) != HIL_OK)
+        return HIL_E_ARG;
+    hil_rng_seed(&r->bus_rng, c->bus_seed);
+    r->log = log;
+    r->csv = csv;
+    /* the boot-up heartbeats go out with the first cycle */
+    enqueue(r, &out, FROM_DRIVE);
+    enqueue(r, &out2, FROM_IMU);
+    if (csv)
+        fprintf(csv, "t,ref,torque_cmd,motor_angle,motor_velocity,imu_rate,tip_angle,tip_velocity,"
+                     "torque_actual,fault\n");
+    return HIL_OK;
+}
+
+static void log_frame(struct hil_rig *r, const struct hil_can_frame *f)
+{
+    char line[HIL_CANDUMP_LINE_MAX];
+    double t = (double)(r->ctrl.cycle ? r->ctrl.cycle - 1 : 0) * r->cfg.ctrl.T + r->slot * 1e-6;
+    r->slot++;
+    if (r->log && hil_candump_format(line, sizeof line, t, "vcan0", f) > 0) {
+        fputs(line, r->log);
+        r->st.frames_logged++;
+    }
+}
+
+static int drain(struct hil_rig *r)
+{
+    int guard = 0;
+    while (r->q_len > 0) {
+        struct hil_can_frame f = r->q[r->q_head];
+        int from = r->q_from[r->q_head], n, st;
+        r->q_head = (r->q_head + 1) % HIL_RIG_QUEUE;
+        r->q_len--;
+        if (++guard > 10 * HIL_RIG_QUEUE)
+            return HIL_E_FULL;
+        r->st.frames_delivered++;
+        log_frame(r, &f);
+        for (n = 0; n < NODES; n++) {
+            struct hil_out out;
+            if (n == from)
+                continue;
+            out.n = 0;
+            if (n == FROM_DRIVE)
+                hil_drive_on_frame(&r->drive, &f, &out);
+            else if (n == FROM_IMU)
+                hil_imu_on_frame(&r->imu, &f, &out);
+            else if (n == FROM_PLANT)
+                hil_plant_on_frame(&r->plant, &f, &out);
+            else
+                hil_ctrl_on_frame(&r->ctrl, &f, &out);
+            st = enqueue(r, &out, n);
+            if (st != HIL_OK)
+                return st;
+        }
+    }
+    return HIL_OK;
+}
+
+static void inject(struct hil_rig *r)
+{
+    struct hil_out out;
+    struct hil_can_frame *f = out.f;
+    memset(&out, 0, sizeof out);
+    f[0].id = HIL_COB_RPDO1(HIL_NODE_DRIVE);
+    f[0].dlc = 5;
+    f[1].id = 0x555;
+    f[1].dlc = 8;
+    out.n = 2;
+    r->st.injected += 2;
+    enqueue(r, &out, FROM_FOREIGN);
+}
+
+int hil_rig_cycle(struct hil_rig *r)
+{
+    struct hil_out out;
+    double tip_angle, tip_rate;
+    int st;
+    if (!r)
+        return HIL_E_ARG;
+    r->slot = 0;
+    tip_angle = r->plant.theta;
+    tip_rate = r->plant.omega;
+    out.n = 0;
+    hil_ctrl_tick(&r->ctrl, &out);
+    if ((st = enqueue(r, &out, FROM_CTRL)) != HIL_OK || (st = drain(r)) != HIL_OK)
+        return st;
+    if (r->cfg.inject_every && r->ctrl.cycle % r->cfg.inject_every == 0) {
+        inject(r);
+        if ((st = drain(r)) != HIL_OK)
+            return st;
+    }
+    out.n = 0;
+    hil_ctrl_deadline(&r->ctrl, &out);
+    if ((st = enqueue(r, &out, FROM_CTRL)) != HIL_OK || (st = drain(r)) != HIL_OK)
+        return st;
+    r->st.cycles++;
+    if (r->csv) {
+        const struct hil_ctrl_signals *s = &r->ctrl.sig;
+        fprintf(r->csv, "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d\n", s->t, s->ref,
+                s->torque_cmd, s->theta, s->omega, s->imu_rate, tip_angle, tip_rate,
+                r->drive.tau_act, s->fault);
+    }
+    return HIL_OK;
+}
+
+int hil_rig_run(struct hil_rig *r)
+{
+    uint64_t n, i;
+    struct hil_out out;
+    int st;
+    if (!r)
+        return HIL_E_ARG;
+    n = (uint64_t)floor(r->cfg.duration / r->cfg.ctrl.T + 0.5);
+    for (i = 0; i < n; i++)
+        if ((st = hil_rig_cycle(r)) != HIL_OK)
+            return st;
+    out.n = 0;
+    hil_ctrl_stop(&r->ctrl, &out);
+    r->slot = 0;
+    if ((st = enqueue(r, &out, FROM_CTRL)) != HIL_OK)
+        return st;
+    return drain(r);
+}
+
+/* Writes s as a JSON string: quotes, backslashes and control bytes escaped. */
+static void json_str(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (; *s; s++) {
+        unsigned char ch = (unsigned char)*s;
+        if (ch == '"' || ch == '\\')
+            fprintf(f, "\\%c", ch);
+        else if (ch < 0x20)
+            fprintf(f, "\\u%04x", ch);
+        else
+            fputc(ch, f);
+    }
+    fputc('"', f);
+}
+
+static void rx_json(FILE *f, const char *name, const struct hil_rx_stats *s, int last)
+{
+    fprintf(f, "    \"%s\": {\"accepted\": %llu, \"other\": %llu, \"unknown_id\": %llu, "
+               "\"bad_dlc\": %llu, \"bad_value\": %llu}%s\n",
+            name, (unsigned long long)s->accepted, (unsigned long long)s->other,
+            (unsigned long long)s->unknown_id, (unsigned long long)s->bad_dlc,
+            (unsigned long long)s->bad_value, last ? "" : ",");
+}
+
+int hil_rig_write_meta(const struct hil_rig *r, FILE *f, double wall_s)
+{
+    const struct hil_rig_config *c;
+    size_t i;
+    if (!r || !f)
+        return HIL_E_ARG;
+    c = &r->cfg;
+    fprintf(f, "{\n  \"schema\": \"fracarm.hil.run\",\n  \"version\": 1,\n");
+    fprintf(f, "  \"software\": {\"fracarm\": \"%s\", \"hil_frames\": \"hil/fracarm.dbc\"},\n", HIL_VERSION);
+    fprintf(f, "  \"mode\": \"lockstep\",\n  \"scenario\": ");
+    json_str(f, c->scenario);
+    fprintf(f, ",\n  \"plant\": \"%s\",\n", c->plant);
+    fprintf(f, "  \"seeds\": {\"bus\": %llu, \"imu\": %llu},\n", (unsigned long long)c->bus_seed,
+            (unsigned long long)c->imu.seed);
+    fprintf(f, "  \"parameters\": {\n    \"T\": %.17g,\n    \"plant_name\": \"%s\",\n", c->ctrl.T, c->plant);
+    for (i = 0; i < NKEYS; i++) {
+        const char *p = (const char *)c + keys[i].off;
+        fprintf(f, "    \"%s\": ", keys[i].name);
+        if (keys[i].type == K_DBL)
+            fprintf(f, "%.17g", *(const double *)p);
+        else if (keys[i].type == K_UNS)
+            fprintf(f, "%u", *(const unsigned *)p);
+        else
+            fprintf(f, "%llu", (unsigned long long)*(const uint64_t *)p);
+        fprintf(f, "%s\n", i + 1 < NKEYS ? "," : "");
+    }
+    fprintf(f, "  },\n  \"effects\": {\"drive_delay_cycles\": %u, \"imu_reading_cycles\": %u, "
+               "\"imu_jitter_prob\": %.17g, \"imu_noise\": [%.17g, %.17g], \"imu_bias\": [%.17g, %.17g], "
+               "\"imu_quant\": [%.17g, %.17g], \"torque_limits\": [%.17g, %.17g], \"frame_loss\": %.17g, "
+               "\"imu_dropout\": [%.17g, %.17g]},\n",
+            c->drive.delay, c->imu.reading_cycles, c->imu.jitter_prob, c->imu.gyro_noise,
+            c->imu.acc_noise, c->imu.gyro_bias, c->imu.acc_bias, c->imu.gyro_quant, c->imu.acc_quant,
+            c->drive.torque_rated, c->drive.torque_peak, c->frame_loss, c->imu_dropout_start,
+            c->imu_dropout_end);
+    fprintf(f, "  \"counts\": {\"cycles\": %llu, \"frames_sent\": %llu, \"frames_lost\": %llu, "
+               "\"frames_delivered\": %llu, \"frames_logged\": %llu, \"injected\": %llu, "
+               "\"missed_inputs\": %llu, \"imu_readings\": %llu, \"faults\": %llu, \"emcy\": %llu},\n",
+            (unsigned long long)r->st.cycles, (unsigned long long)r->st.frames_sent,
+            (unsigned long long)r->st.frames_lost, (unsigned long long)r->st.frames_delivered,
+            (unsigned long long)r->st.frames_logged, (unsigned long long)r->st.injected,
+            (unsigned long long)r->ctrl.missed_inputs, (unsigned long long)r->ctrl.imu_readings,
+            (unsigned long long)r->ctrl.faults,
+            (unsigned long long)(r->ctrl.emcy_sent + r->drive.emcy_sent));
+    fprintf(f, "  \"rx\": {\n");
+    rx_json(f, "drive", &r->drive.rx, 0);
+    rx_json(f, "imu", &r->imu.rx, 0);
+    rx_json(f, "plant", &r->plant.rx, 0);
+    rx_json(f, "ctrl", &r->ctrl.rx, 1);
+    fprintf(f, "  },\n  \"wall_s\": %.6f\n}\n", wall_s);
+    return HIL_OK;
+}
