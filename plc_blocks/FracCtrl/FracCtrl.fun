@@ -89,3 +89,30 @@ FUNCTION_BLOCK FrictionComp (*Static friction compensation torque (seed 004 (5.2
 		Friction : FracFrictionObj;
 	END_VAR
 END_FUNCTION_BLOCK
+
+FUNCTION_BLOCK LQGDelay (*State-difference LQG with delay registers and friction state (seed 004 (6.45), (7.18)-(7.27)) (frac/lqg.h)*)
+	VAR_INPUT
+		Enable : BOOL;
+		Parameters : LQGDelayParType;
+		Update : BOOL; (*Rising edge: take over Parameters (the estimate restarts at 0)*)
+		Reset : BOOL; (*Rising edge: estimate back to 0*)
+		UStar : REAL; (*Feedforward torque, already sent Di samples early [Nm]*)
+		YRef : ARRAY[0..2] OF REAL; (*References of the measured outputs, delayed ones delayed by Do*)
+		Y : ARRAY[0..2] OF REAL; (*Measurements as received*)
+	END_VAR
+	VAR_OUTPUT
+		Valid : BOOL;
+		Busy : BOOL;
+		Error : BOOL;
+		StatusID : UINT; (*fracSTAT_OK, 52003 a measurement skipped, fracERR_NONFINITE (U holds), 51xxx parameter errors, fracERR_PARAM (P out of range)*)
+		U : REAL; (*Torque command u_bar = u* + K e_x - e_z [Nm]*)
+		FrictionEstimate : REAL; (*z_hat, the friction torque the law compensates [Nm]*)
+	END_VAR
+	VAR
+		Fb : FracFbStateType;
+		ResetOld : BOOL;
+		Bank : UDINT; (*Storage bank of the object in effect*)
+		Lqg : FracLqgObj;
+		Storage : ARRAY[0..1, 0..fracLQG_STORAGE_LEN] OF FracReal; (*Two banks: a new set is built in the other one*)
+	END_VAR
+END_FUNCTION_BLOCK
