@@ -1,6 +1,12 @@
-/* hil_ctrl: the controller node in real time (wall clock): NMT master, SYNC
- * every T, PD test law (hil/ctrl.h). Reports cycle jitter (SYNC send time
- * minus its schedule) as p50/p99/max and the deadline misses. */
+/* hil_ctrl: the controller node over a bus: NMT master, SYNC producer, PD
+ * test law (hil/ctrl.h).
+ * Real time (default): SYNC every T by the wall clock; the law runs when the
+ * drive's TPDOs are in or at 0.8 T; reports the cycle jitter (SYNC send time
+ * minus its schedule) as p50/p99/max and the deadline misses (jitter > T).
+ * --lockstep: simulated time paced by the bus: SYNC, wait for the drive's
+ * TPDOs (law), wait for the plant's end-of-step frame, next SYNC; each wait is
+ * bounded (--step-timeout, default 0.1 s; a timeout counts as a missed
+ * input). For slow hosts such as a TCG-emulated guest. */
 #include <stdlib.h>
 #include <string.h>
 #include "app_common.h"
@@ -13,21 +19,32 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* Receives and handles frames until the monotonic time `until`. */
-static void serve(struct hil_transport *t, struct hil_ctrl *c, double until)
+/* Receives and handles frames until the monotonic time `until`, or, with
+ * want != 0, until that condition holds: 1 = both drive TPDOs of this cycle
+ * in, 2 = the plant's end-of-step frame (RIG_MOTOR) seen. */
+static int step_done;
+
+static int serve(struct hil_transport *t, struct hil_ctrl *c, double until, int want)
 {
     for (;;) {
         struct hil_can_frame f;
         struct hil_out out;
-        double left = until - app_now();
+        double left;
         int st;
+        if (want == 1 && c->have_tpdo1 && c->have_tpdo2)
+            return 1;
+        if (want == 2 && step_done)
+            return 1;
+        left = until - app_now();
         if (left <= 0.0)
-            return;
+            return 0;
         st = hil_transport_recv(t, &f, (long)(left * 1e6));
         if (st == HIL_E_TIMEOUT || st == HIL_E_IO)
-            return;
+            return 0;
         if (st != HIL_OK)
             continue;
+        if (f.id == HIL_COB_RIG_MOTOR)
+            step_done = 1;
         out.n = 0;
         hil_ctrl_on_frame(c, &f, &out);
         app_send_all(t, &out);
@@ -54,13 +71,38 @@ int main(int argc, char **argv)
     struct hil_out out;
     FILE *csv = NULL;
     double *late, next, T, t0;
-    long k, n, misses = 0, injected = 0;
+    long k, n, misses = 0, injected = 0, step_timeouts = 0;
+    int lockstep = 0, i;
+    double step_timeout = 0.1;
+    /* hil_ctrl's own options, taken out before the common parser sees argv */
+    for (i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--lockstep") == 0) {
+            lockstep = 1;
+        } else if (strcmp(argv[i], "--step-timeout") == 0 && i + 1 < argc) {
+            char *end;
+            step_timeout = strtod(argv[i + 1], &end);
+            if (*end || !(step_timeout > 0.0)) {
+                fprintf(stderr, "--step-timeout wants seconds > 0\n");
+                return 2;
+            }
+            memmove(&argv[i], &argv[i + 1], (size_t)(argc - i - 1) * sizeof *argv);
+            argc--;
+        } else {
+            continue;
+        }
+        memmove(&argv[i], &argv[i + 1], (size_t)(argc - i - 1) * sizeof *argv);
+        argc--;
+        i--;
+    }
     app_parse(argc, argv, &o,
               "usage: hil_ctrl [options]\n"
               "The controller node in real time: NMT start, SYNC every T, PD test law,\n"
               "IMU watchdog; prints HIL_STATS and HIL_JITTER (p50/p99/max in us).\n"
               "  --cycles N          cycles to run (default: duration / T from the scenario)\n"
-              "  --csv FILE          signals as the controller saw them, one row per cycle\n");
+              "  --csv FILE          signals as the controller saw them, one row per cycle\n"
+              "  --lockstep          pace on the bus (wait for the drive and the plant) instead\n"
+              "                      of the wall clock\n"
+              "  --step-timeout S    bound of each lockstep wait (default 0.1)\n");
     if (hil_ctrl_init(&c, &o.cfg.ctrl) != HIL_OK) {
         fprintf(stderr, "hil_ctrl: invalid parameters\n");
         return 2;
@@ -78,21 +120,25 @@ int main(int argc, char **argv)
         fprintf(csv, "t,ref,torque_cmd,motor_angle,motor_velocity,imu_rate,fault\n");
     app_open_bus(&t, o.bus);
     t0 = next = app_now() + 0.05;
-    serve(&t, &c, next);
+    serve(&t, &c, next, 0);
     for (k = 0; k < n; k++) {
         double now;
         out.n = 0;
+        step_done = 0;
         hil_ctrl_tick(&c, &out);
         now = app_now();
         app_send_all(&t, &out);
-        late[k] = now - next;
+        late[k] = lockstep ? 0.0 : now - next;
         if (late[k] > T)
             misses++;
         if (o.cfg.inject_every && (k + 1) % o.cfg.inject_every == 0) {
             inject(&t);
             injected += 2;
         }
-        serve(&t, &c, next + 0.8 * T);
+        if (lockstep)
+            serve(&t, &c, app_now() + step_timeout, 1);
+        else
+            serve(&t, &c, next + 0.8 * T, 1);
         out.n = 0;
         hil_ctrl_deadline(&c, &out);
         app_send_all(&t, &out);
@@ -101,17 +147,22 @@ int main(int argc, char **argv)
             fprintf(csv, "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%d\n", s->t, s->ref, s->torque_cmd, s->theta,
                     s->omega, s->imu_rate, s->fault);
         }
-        next += T;
-        serve(&t, &c, next);
+        if (lockstep) {
+            if (!serve(&t, &c, app_now() + step_timeout, 2))
+                step_timeouts++;
+        } else {
+            next += T;
+            serve(&t, &c, next, 0);
+        }
     }
     out.n = 0;
     hil_ctrl_stop(&c, &out);
     app_send_all(&t, &out);
-    serve(&t, &c, app_now() + 0.05);
+    serve(&t, &c, app_now() + 0.05, 0);
     qsort(late, (size_t)n, sizeof *late, cmp_double);
-    printf("HIL_JITTER cycles=%ld p50_us=%.1f p99_us=%.1f max_us=%.1f deadline_misses=%ld wall_s=%.3f\n", n,
-           1e6 * late[n / 2], 1e6 * late[(size_t)((n - 1) * 0.99)], 1e6 * late[n - 1], misses,
-           app_now() - t0);
+    printf("HIL_JITTER mode=%s cycles=%ld p50_us=%.1f p99_us=%.1f max_us=%.1f deadline_misses=%ld "
+           "step_timeouts=%ld wall_s=%.3f\n", lockstep ? "lockstep" : "realtime", n, 1e6 * late[n / 2],
+           1e6 * late[(size_t)((n - 1) * 0.99)], 1e6 * late[n - 1], misses, step_timeouts, app_now() - t0);
     printf("HIL_CTRL cycles=%llu missed_inputs=%llu imu_readings=%llu faults=%llu emcy_received=%llu "
            "injected=%ld final_angle=%.6f\n",
            (unsigned long long)c.cycle, (unsigned long long)c.missed_inputs,

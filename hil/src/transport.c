@@ -179,19 +179,23 @@ int hil_transport_send(struct hil_transport *t, const struct hil_can_frame *f)
     }
 }
 
+/* ppoll, not poll: the timeout keeps microseconds, which the real-time
+ * controller loop needs at T = 1.2 ms. */
 static int wait_readable(int fd, long timeout_us)
 {
     struct pollfd p;
-    int ms, r;
-    if (timeout_us < 0)
-        ms = -1;
-    else
-        ms = (int)((timeout_us + 999) / 1000);
+    struct timespec ts, *tp = NULL;
+    int r;
+    if (timeout_us >= 0) {
+        ts.tv_sec = timeout_us / 1000000;
+        ts.tv_nsec = (timeout_us % 1000000) * 1000;
+        tp = &ts;
+    }
     p.fd = fd;
     p.events = POLLIN;
     p.revents = 0;
     do {
-        r = poll(&p, 1, ms);
+        r = ppoll(&p, 1, tp, NULL);
     } while (r < 0 && errno == EINTR);
     if (r < 0)
         return HIL_E_IO;
