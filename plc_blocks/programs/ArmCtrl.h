@@ -1,0 +1,115 @@
+/*
+ * ArmCtrl.h - the arm controller program of Cyclic #1 (1.2 ms), seed 004
+ * part 2 (notes 8.5, Fig. 2.12): per cycle, in the thesis order,
+ *   1. read drive values   (MC_BR_CyclicRead: ParID 91 angle, 92 speed;
+ *                           here the latched I/O image) and the IMU tip rate
+ *                           published by ImuRead (Cyclic #2);
+ *   2. counter             (counts run time once the motion is activated);
+ *   3. controller          (exp_obc: feedforward lookup + feedback law);
+ *   4. torque setpoint     (MC_BR_CyclicWrite ParID 586 + MC_BR_TorqueControl;
+ *                           here the output image, published at task end).
+ * Variants (Table 8.1):
+ *   Exp. A  rbFFC tables + PD (5.1) + static friction compensation (5.2);
+ *   Exp. B  ibFFC tables + PD (5.1) + static friction compensation;
+ *   Exp. C  ibFFC tables + state-difference LQG with friction state (6.45);
+ *   Exp. D  as C with the delay model (7.21), feedforward torque sent d_i
+ *           cycles early and the IMU reference delayed d_o cycles (Sec. 8.6).
+ * The feedforward tables themselves (rbFFC (4.14)-(4.16) or the stable
+ * inversion of Sec. 4.3) and the LQG gains come from the design tools.
+ *
+ * Parameters are checked at _INIT by enabling every block the variant
+ * uses; if any block reports Error, the program latches the fault
+ * (StatusID of the first failing block) and never enables the torque.
+ * At run time a stale drive or IMU value (Watchdog) ramps the torque to
+ * zero. No allocation anywhere; cost per cycle is the blocks' cost.
+ */
+#ifndef ARMCTRL_H
+#define ARMCTRL_H
+
+#include "FracCtrl.h"
+#include "ImuRead.h"
+#include "plc_rt.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum armctrl_variant {
+    ARMCTRL_EXP_A = 0,
+    ARMCTRL_EXP_B = 1,
+    ARMCTRL_EXP_C = 2,
+    ARMCTRL_EXP_D = 3
+} armctrl_variant;
+
+/* Feedforward channels (notes 4.5: only y* and u* are stored on the PLC). */
+enum {
+    ARMCTRL_FF_THETA = 0,  /* theta_M* [rad] */
+    ARMCTRL_FF_DTHETA = 1, /* dtheta_M* [rad/s] */
+    ARMCTRL_FF_DPSI = 2,   /* dpsi_L* tip rate [rad/s] (LQG variants) */
+    ARMCTRL_FF_TAU = 3,    /* tau_M* = u* [Nm] */
+    ARMCTRL_FF_N = 4
+};
+
+/* Inputs of the I/O image. */
+typedef struct armctrl_inputs {
+    REAL MotorAngle;    /* theta_M, driven side [rad] (ParID 91) */
+    REAL MotorVelocity; /* dtheta_M [rad/s] (ParID 92) */
+    UDINT DriveCounter; /* incremented by the drive interface for every new value */
+    REAL TipRate;       /* dpsi_L [rad/s], from ImuRead */
+    UDINT ImuCounter;   /* incremented by ImuRead for every new IMU sample */
+    BOOL Start;         /* rising edge: start the motion (the counter runs) */
+} armctrl_inputs;
+
+/* Outputs of the I/O image. */
+typedef struct armctrl_outputs {
+    REAL TorqueSetpoint; /* tau_M set [Nm] (ParID 586) */
+    BOOL TorqueEnable;   /* MC_BR_TorqueControl Enable */
+    UDINT Counter;       /* cycles since the motion started */
+    BOOL Error;          /* a block reports Error */
+    UINT StatusID;       /* StatusID of the first block in Error, else fracSTAT_OK */
+} armctrl_outputs;
+
+typedef struct armctrl_params {
+    armctrl_variant Variant;
+    REAL CycleTime;                    /* task class duration [s] (1.2e-3) */
+    LUT1DParType Ff[ARMCTRL_FF_N];     /* feedforward tables over absolute time [s] */
+    DINT FfShift[ARMCTRL_FF_N];        /* per-channel lead (+) / lag (-) [cycles]; Exp. D: tau +d_i, dpsi -d_o */
+    REAL Kp, Kd;                       /* PD gains, Table 8.6: 320 Nm/rad, 200 Nm s/rad */
+    FrictionCompParType Friction;      /* Table 8.6: linear, 3.04, 7.684, k = 60 */
+    LQGDelayParType Lqg;               /* Exp. C/D */
+    WatchdogParType WdDrive, WdImu;    /* stale limits and ramp */
+    REAL TorqueLimit;                  /* |tau| limit [Nm] (thesis [GAP]; drive peak ~251 Nm) */
+} armctrl_params;
+
+typedef struct armctrl {
+    const armctrl_params *par;
+    armctrl_inputs in;   /* program-local copy of the inputs (latched) */
+    armctrl_outputs out; /* program-local copy of the outputs (published at task end) */
+    struct LUT1D ff[ARMCTRL_FF_N];
+    struct FrictionComp friction;
+    struct LQGDelay lqg;
+    struct Watchdog wd_drive, wd_imu;
+    BOOL start_old, running, fault;
+    UDINT counter;
+    plc_io io_in[3], io_out;
+} armctrl;
+
+/*
+ * Fills `prog` (name "ArmCtrl") for the task runtime: _INIT/_CYCLIC/_EXIT
+ * on `a`, inputs latched from *image_in, except TipRate and ImuCounter,
+ * which come from ImuRead's output image *imu_image when it is not NULL
+ * (the I/O mapping between the two task classes); outputs published to
+ * *image_out. `par` must stay valid while the program runs.
+ */
+void armctrl_program(armctrl *a, plc_program *prog, const armctrl_params *par, armctrl_inputs *image_in,
+                     imuread_outputs *imu_image, armctrl_outputs *image_out);
+
+void armctrl_init(void *ctx);   /* _INIT */
+void armctrl_cyclic(void *ctx); /* _CYCLIC */
+void armctrl_exit(void *ctx);   /* _EXIT */
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* ARMCTRL_H */

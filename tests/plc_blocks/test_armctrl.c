@@ -1,0 +1,331 @@
+/* ArmCtrl (Cyclic #1) and ImuRead (Cyclic #2) in the task runtime, lockstep
+ * with a plant model: Exp. A tracks the Table 8.5 trajectory; a table that
+ * fails validation never enables the torque; a stale drive ramps the
+ * torque to zero; Exp. D sends the feedforward torque d_i cycles early. */
+#include "frac_test.h"
+#include "ArmCtrl.h"
+#include "ImuRead.h"
+#include "plc_rt.h"
+#include "frac/traj.h"
+
+#include <string.h>
+
+/* Drive + rigid link joined by the gear spring: the rbFFC design model
+ * (4.8)-(4.12) of seed 004, with the spring term squared (notes 3 [AMBIG]).
+ * I_M = n^2 I_m = 5.8624 kg m^2 (notes 9.2); I_l = I_h + I_b with the
+ * derived beam inertia 0.7221 kg m^2 (notes 3 [GAP]); c_s = 5e4 Nm/rad
+ * (Table 8.2); motor friction (5.2) with Table 8.6 values. */
+#define I_M 5.8624
+#define I_L (1.69e-4 + 0.7221)
+#define C_S 5.0e4
+#define FRIC_B1 3.04
+#define FRIC_B0 7.684
+#define KTANH 60.0
+#define T_CYCLE 1.2e-3
+#define N_FF 2668 /* 0 .. 3.2 s */
+
+typedef struct plant {
+    double th_m, th_l, w_m, w_l;
+} plant;
+
+static void plant_deriv(const double *x, double tau, double *dx)
+{
+    double spring = C_S * (x[0] - x[1]);
+    dx[0] = x[2];
+    dx[1] = x[3];
+    dx[2] = (tau - spring - (FRIC_B1 * x[2] + FRIC_B0 * tanh(KTANH * x[2]))) / I_M;
+    dx[3] = spring / I_L;
+}
+
+/* RK4 over dt. */
+static void plant_step(plant *p, double tau, double dt)
+{
+    double x[4], k1[4], k2[4], k3[4], k4[4], y[4];
+    int i;
+    x[0] = p->th_m; x[1] = p->th_l; x[2] = p->w_m; x[3] = p->w_l;
+    plant_deriv(x, tau, k1);
+    for (i = 0; i < 4; i++) y[i] = x[i] + 0.5 * dt * k1[i];
+    plant_deriv(y, tau, k2);
+    for (i = 0; i < 4; i++) y[i] = x[i] + 0.5 * dt * k2[i];
+    plant_deriv(y, tau, k3);
+    for (i = 0; i < 4; i++) y[i] = x[i] + dt * k3[i];
+    plant_deriv(y, tau, k4);
+    for (i = 0; i < 4; i++) x[i] += dt / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+    p->th_m = x[0]; p->th_l = x[1]; p->w_m = x[2]; p->w_l = x[3];
+}
+
+/* Feedforward tables on the grid t_i = i T: rbFFC (4.14)-(4.17) from the
+ * Table 8.5 trajectory (frac/traj.h), dpsi_L* = dq for the rigid link. */
+static frac_real ff_tab[ARMCTRL_FF_N][N_FF];
+static frac_traj traj;
+
+static void build_ff(void)
+{
+    frac_traj_params tp;
+    int i;
+    tp.q_s = 0.0;
+    tp.q_e = FRAC_PI / 2;
+    tp.dq_max = FRAC_PI / 2;
+    tp.ddq_max = 2 * FRAC_PI;
+    tp.t_start = 0.5;
+    tp.duration = 1.5;
+    assert_int_equal(frac_traj_init(&traj, &tp), FRAC_OK);
+    for (i = 0; i < N_FF; i++) {
+        frac_real d[5], th, ddth;
+        assert_int_equal(frac_traj_eval(&traj, (frac_real)(i * T_CYCLE), d), FRAC_OK);
+        th = (frac_real)(I_L / C_S) * d[2] + d[0];
+        ddth = (frac_real)(I_L / C_S) * d[4] + d[2];
+        ff_tab[ARMCTRL_FF_THETA][i] = th;
+        ff_tab[ARMCTRL_FF_DTHETA][i] = (frac_real)(I_L / C_S) * d[3] + d[1];
+        ff_tab[ARMCTRL_FF_DPSI][i] = d[1];
+        ff_tab[ARMCTRL_FF_TAU][i] = (frac_real)I_M * ddth + (frac_real)C_S * (th - d[0]);
+    }
+}
+
+static void exp_a_params(armctrl_params *p)
+{
+    int ch;
+    memset(p, 0, sizeof *p);
+    p->Variant = ARMCTRL_EXP_A;
+    p->CycleTime = (REAL)T_CYCLE;
+    for (ch = 0; ch < ARMCTRL_FF_N; ch++) {
+        p->Ff[ch].X0 = 0.0;
+        p->Ff[ch].Dx = T_CYCLE;
+        p->Ff[ch].pY = ff_tab[ch];
+        p->Ff[ch].N = N_FF;
+        p->Ff[ch].Interpolation = fracINTERP_LINEAR;
+        p->Ff[ch].Range = fracRANGE_CLAMP;
+    }
+    p->Kp = 320.0f; /* Table 8.6 */
+    p->Kd = 200.0f;
+    p->Friction.Model = fracFRICTION_LINEAR;
+    p->Friction.K = (REAL)KTANH;
+    p->Friction.B1 = (REAL)FRIC_B1;
+    p->Friction.B0 = (REAL)FRIC_B0;
+    p->WdDrive.MaxStaleCycles = 2;
+    p->WdDrive.RampRate = 200.0f;
+    p->WdDrive.CycleTime = (REAL)T_CYCLE;
+    p->WdImu = p->WdDrive;
+    p->TorqueLimit = 250.0f;
+}
+
+/* The bench: process image, plant, and the "hardware" side of the I/O. */
+typedef struct bench {
+    plant pl;
+    armctrl_inputs drive_img;
+    armctrl_outputs ctrl_img;
+    imuread_inputs can_img;
+    imuread_outputs imu_img;
+    uint64_t ticks;
+    uint64_t stale_from_tick; /* drive stops updating from this tick on (0 = never) */
+    double max_track_err, max_abs_tau, start_time;
+    int torque_seen;
+} bench;
+
+static void bench_tick(void *ctx, uint64_t t_ns)
+{
+    bench *b = (bench *)ctx;
+    double tau = b->ctrl_img.TorqueEnable ? (double)b->ctrl_img.TorqueSetpoint : 0.0;
+    int i;
+    (void)t_ns;
+    if (b->ctrl_img.TorqueEnable) {
+        b->torque_seen = 1;
+    }
+    if (fabs(tau) > b->max_abs_tau) {
+        b->max_abs_tau = fabs(tau);
+    }
+    for (i = 0; i < 4; i++) {
+        plant_step(&b->pl, tau, 25e-6);
+    }
+    b->ticks++;
+    /* drive values refresh every POWERLINK cycle (400 us, Table 2.3) */
+    if (b->ticks % 4 == 0 && (b->stale_from_tick == 0 || b->ticks < b->stale_from_tick)) {
+        b->drive_img.MotorAngle = (REAL)b->pl.th_m;
+        b->drive_img.MotorVelocity = (REAL)b->pl.w_m;
+        b->drive_img.DriveCounter++;
+    }
+    /* an IMU frame every 600 us: tip rate of the rigid link */
+    if (b->ticks % 6 == 0) {
+        b->can_img.RawRate = (REAL)b->pl.w_l;
+        b->can_img.FrameCounter++;
+    }
+    b->drive_img.Start = b->ticks >= 24;
+    /* tracking of the link angle against the trajectory at the controller's time */
+    if (b->ctrl_img.Counter > 0) {
+        frac_real d[5];
+        double t = (double)b->ctrl_img.Counter * T_CYCLE;
+        (void)frac_traj_eval(&traj, (frac_real)t, d);
+        if (fabs(b->pl.th_l - (double)d[0]) > b->max_track_err) {
+            b->max_track_err = fabs(b->pl.th_l - (double)d[0]);
+        }
+    }
+}
+
+static const char *table_2_3 =
+    "[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\nviolation_reaction = service\n"
+    "[cyclic1]\nduration_us = 1200\nsim_cost_us = 300\nprograms = ArmCtrl\n"
+    "[cyclic2]\nduration_us = 600\nsim_cost_us = 50\nprograms = ImuRead\n";
+
+static void run_bench(bench *b, const armctrl_params *par, uint64_t ticks, armctrl *a, imuread *m)
+{
+    plc_program pa, pm;
+    const plc_program *reg[2];
+    plc_rt_config cfg;
+    plc_rt rt;
+    char err[256];
+    armctrl_program(a, &pa, par, &b->drive_img, &b->imu_img, &b->ctrl_img);
+    imuread_program(m, &pm, 1.0f, &b->can_img, &b->imu_img);
+    reg[0] = &pa;
+    reg[1] = &pm;
+    assert_int_equal(plc_rt_config_parse(&cfg, table_2_3, "table_2_3", err, sizeof err), PLC_RT_OK);
+    assert_int_equal(plc_rt_init(&rt, &cfg, reg, 2, err, sizeof err), PLC_RT_OK);
+    rt.tick_hook = bench_tick;
+    rt.tick_ctx = b;
+    assert_int_equal(plc_rt_start(&rt), PLC_RT_OK);
+    assert_int_equal(plc_rt_run_sim(&rt, ticks), PLC_RT_OK);
+    assert_int_equal(rt.stats[0].violations + rt.stats[1].violations, 0);
+    plc_rt_stop(&rt);
+}
+
+static void test_exp_a_tracks_table_8_5_in_lockstep(void **state)
+{
+    static bench b;
+    static armctrl a;
+    static imuread m;
+    armctrl_params par;
+    (void)state;
+    build_ff();
+    exp_a_params(&par);
+    memset(&b, 0, sizeof b);
+    run_bench(&b, &par, 32000, &a, &m); /* 3.2 s */
+    print_message("Exp. A lockstep: max |theta_l - q| = %.3g rad, final theta_l = %.6f rad, max |tau| = %.1f Nm\n",
+                  b.max_track_err, b.pl.th_l, b.max_abs_tau);
+    assert_true(b.torque_seen);
+    assert_false(b.ctrl_img.Error);
+    /* Counter started at the Start edge (tick 24, first cycle after it at 3.6 ms) */
+    assert_true(b.ctrl_img.Counter > 2600);
+    /* tip (rigid link) follows the 90 deg PTP; at rest at pi/2 afterwards */
+    assert_true(b.max_track_err < 5e-3);
+    assert_close(b.pl.th_l, FRAC_PI / 2, 2e-3);
+    assert_close(b.pl.w_l, 0.0, 1e-2);
+    /* torque stays in the range the thesis reports for Exp. A (-40..60 Nm) */
+    assert_true(b.max_abs_tau < 60.0);
+    assert_true(b.max_abs_tau > 30.0);
+}
+
+static void test_bad_table_never_enables_torque(void **state)
+{
+    static bench b;
+    static armctrl a;
+    static imuread m;
+    static frac_real bad[N_FF];
+    armctrl_params par;
+    (void)state;
+    build_ff();
+    /* too short */
+    exp_a_params(&par);
+    par.Ff[ARMCTRL_FF_TAU].N = 1;
+    memset(&b, 0, sizeof b);
+    run_bench(&b, &par, 3000, &a, &m);
+    assert_false(b.torque_seen);
+    assert_true(b.ctrl_img.Error);
+    assert_int_equal(b.ctrl_img.StatusID, fracERR_LIBFRAC - FRAC_E_DIM);
+    assert_true(b.max_abs_tau == 0.0);
+    assert_close(b.pl.th_m, 0.0, 0.0);
+    /* not finite */
+    memcpy(bad, ff_tab[ARMCTRL_FF_THETA], sizeof bad);
+    bad[100] = (frac_real)NAN;
+    exp_a_params(&par);
+    par.Ff[ARMCTRL_FF_THETA].pY = bad;
+    memset(&b, 0, sizeof b);
+    run_bench(&b, &par, 3000, &a, &m);
+    assert_false(b.torque_seen);
+    assert_int_equal(b.ctrl_img.StatusID, fracERR_NONFINITE);
+    /* out-of-range friction parameter */
+    exp_a_params(&par);
+    par.Friction.K = -1.0f;
+    memset(&b, 0, sizeof b);
+    run_bench(&b, &par, 3000, &a, &m);
+    assert_false(b.torque_seen);
+    assert_int_equal(b.ctrl_img.StatusID, fracERR_PARAM);
+    /* program parameter */
+    exp_a_params(&par);
+    par.Kp = (REAL)NAN;
+    memset(&b, 0, sizeof b);
+    run_bench(&b, &par, 3000, &a, &m);
+    assert_false(b.torque_seen);
+    assert_int_equal(b.ctrl_img.StatusID, fracERR_PARAM);
+}
+
+static void test_stale_drive_ramps_torque_to_zero(void **state)
+{
+    static bench b;
+    static armctrl a;
+    static imuread m;
+    armctrl_params par;
+    (void)state;
+    build_ff();
+    exp_a_params(&par);
+    memset(&b, 0, sizeof b);
+    b.stale_from_tick = 10000; /* 1.0 s: mid-acceleration */
+    run_bench(&b, &par, 14000, &a, &m);
+    assert_true(b.ctrl_img.Error);
+    assert_int_equal(b.ctrl_img.StatusID, fracERR_SENSOR_STALE);
+    /* 200 Nm/s from at most 60 Nm: zero within 0.3 s */
+    assert_true(b.ctrl_img.TorqueSetpoint == 0.0f);
+}
+
+static void test_exp_d_sends_feedforward_torque_d_i_cycles_early(void **state)
+{
+    static armctrl a;
+    static frac_real A[1] = {1.0}, B[1] = {0.0}, C[3] = {0.0, 0.0, 0.0}, K[8], L[27];
+    armctrl_params par;
+    plc_program prog;
+    armctrl_inputs img_in;
+    armctrl_outputs img_out;
+    UDINT k;
+    (void)state;
+    build_ff();
+    exp_a_params(&par);
+    par.Variant = ARMCTRL_EXP_D;
+    /* Sec. 8.6: u*[k + d_i] with d_i = 4; dpsi*[k - d_o] with d_o = 3 */
+    par.FfShift[ARMCTRL_FF_TAU] = 4;
+    par.FfShift[ARMCTRL_FF_DPSI] = -3;
+    /* zero gains: the torque is the (shifted) feedforward alone */
+    par.Lqg.N = 1;
+    par.Lqg.Di = 4;
+    par.Lqg.P = 3;
+    par.Lqg.Do[2] = 3;
+    par.Lqg.pA = A;
+    par.Lqg.pB = B;
+    par.Lqg.pC = C;
+    par.Lqg.pK = K;
+    par.Lqg.pL = L;
+    memset(&img_in, 0, sizeof img_in);
+    armctrl_program(&a, &prog, &par, &img_in, NULL, &img_out);
+    armctrl_init(&a);
+    assert_false(a.out.Error);
+    for (k = 0; k < 1500; k++) {
+        /* the counter runs from the Start edge at cycle 1: table time (k - 1) T */
+        UDINT idx = (k > 0 ? k - 1 : 0) + 4;
+        a.in.Start = k > 0;
+        a.in.DriveCounter = k + 1;
+        a.in.ImuCounter = k + 1;
+        armctrl_cyclic(&a);
+        assert_false(a.out.Error);
+        assert_close(a.out.TorqueSetpoint, ff_tab[ARMCTRL_FF_TAU][idx], 1e-3);
+    }
+    armctrl_exit(&a);
+    assert_int_equal(a.lqg.StatusID, fracSTAT_DISABLED);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_exp_a_tracks_table_8_5_in_lockstep),
+        cmocka_unit_test(test_bad_table_never_enables_torque),
+        cmocka_unit_test(test_stale_drive_ramps_torque_to_zero),
+        cmocka_unit_test(test_exp_d_sends_feedforward_torque_d_i_cycles_early),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
