@@ -116,3 +116,27 @@ FUNCTION_BLOCK LQGDelay (*State-difference LQG with delay registers and friction
 		Storage : ARRAY[0..1, 0..fracLQG_STORAGE_LEN] OF FracReal; (*Two banks: a new set is built in the other one*)
 	END_VAR
 END_FUNCTION_BLOCK
+
+FUNCTION_BLOCK TrajLUT (*Trajectory playback with per-channel lead/lag (seed 004 Sec. 6.4, 8.6) (frac/trajlut.h)*)
+	VAR_INPUT
+		Enable : BOOL;
+		Parameters : TrajLUTParType;
+		Update : BOOL; (*Rising edge: take over Parameters (playback restarts at cycle 0)*)
+		Run : BOOL; (*TRUE: advance one cycle per call (the thesis's run-time counter); FALSE: hold the current cycle*)
+		Restart : BOOL; (*Rising edge: back to cycle 0*)
+	END_VAR
+	VAR_OUTPUT
+		Valid : BOOL;
+		Busy : BOOL;
+		Error : BOOL;
+		StatusID : UINT; (*fracSTAT_OK, fracWRN_CLAMPED (outside the table: end values), 51xxx parameter errors*)
+		Y : ARRAY[0..7] OF REAL; (*Channel values at (Cycle + Lead) Ts*)
+		Segment : FracTrajSegmentEnum;
+		Cycle : UDINT; (*Cycle k the outputs belong to*)
+	END_VAR
+	VAR
+		Fb : FracFbStateType;
+		RestartOld : BOOL;
+		Traj : FracTrajLutObj;
+	END_VAR
+END_FUNCTION_BLOCK
