@@ -12,11 +12,8 @@ static int uses_lqg(const armctrl_params *p)
 /* First Error among the blocks the variant runs (0 if none). */
 static UINT first_error(const armctrl *a)
 {
-    int ch;
-    for (ch = 0; ch < ARMCTRL_FF_N; ch++) {
-        if (a->ff[ch].Error) {
-            return a->ff[ch].StatusID;
-        }
+    if (a->ff.Error) {
+        return a->ff.StatusID;
     }
     if (uses_lqg(a->par)) {
         if (a->lqg.Error) {
@@ -34,16 +31,13 @@ static UINT first_error(const armctrl *a)
 static void run_blocks(armctrl *a)
 {
     const armctrl_params *p = a->par;
-    REAL t, ff[ARMCTRL_FF_N], tau;
-    int ch;
+    const REAL *ff = a->ff.Y;
+    REAL tau;
 
-    /* 3. controller: feedforward at t = k T, each channel shifted by its lead/lag */
-    t = (REAL)a->counter * p->CycleTime;
-    for (ch = 0; ch < ARMCTRL_FF_N; ch++) {
-        a->ff[ch].X = t + (REAL)p->FfShift[ch] * p->CycleTime;
-        LUT1D(&a->ff[ch]);
-        ff[ch] = a->ff[ch].Y;
-    }
+    /* 3. controller: feedforward of cycle k at (k + lead) T per channel; it
+     * advances while the motion runs (the thesis's run-time counter) */
+    a->ff.Run = a->running;
+    TrajLUT(&a->ff);
     if (uses_lqg(p)) {
         /* (6.45)/(7.21): u = u* + K e_x - e_z, outputs [theta_M, dtheta_M, dpsi_L] */
         a->lqg.UStar = ff[ARMCTRL_FF_TAU];
@@ -85,7 +79,6 @@ void armctrl_init(void *ctx)
 {
     armctrl *a = (armctrl *)ctx;
     const armctrl_params *p = a->par;
-    int ch;
     UINT st = fracSTAT_OK;
 
     memset(&a->ff, 0, sizeof a->ff);
@@ -98,10 +91,8 @@ void armctrl_init(void *ctx)
     a->running = 0;
     a->start_old = 1; /* a Start already TRUE at power-on is not an edge */
     a->fault = 0;
-    for (ch = 0; ch < ARMCTRL_FF_N; ch++) {
-        a->ff[ch].Parameters = p->Ff[ch];
-        a->ff[ch].Enable = 1;
-    }
+    a->ff.Parameters = p->Ff;
+    a->ff.Enable = 1;
     a->wd_drive.Parameters = p->WdDrive;
     a->wd_drive.Enable = 1;
     if (uses_lqg(p)) {
@@ -115,6 +106,7 @@ void armctrl_init(void *ctx)
     }
     /* program-level parameters (not owned by a block) */
     if (!(p->CycleTime > 0.0f) || !(p->TorqueLimit > 0.0f) || (unsigned)p->Variant > ARMCTRL_EXP_D
+        || p->Ff.Channels != ARMCTRL_FF_N
         || (!uses_lqg(p) && !(FRAC_ISFINITE(p->Kp) && FRAC_ISFINITE(p->Kd)))) {
         st = fracERR_PARAM;
     }
@@ -165,12 +157,9 @@ void armctrl_cyclic(void *ctx)
 void armctrl_exit(void *ctx)
 {
     armctrl *a = (armctrl *)ctx;
-    int ch;
     /* disable every block: outputs to zero, StatusID fracSTAT_DISABLED */
-    for (ch = 0; ch < ARMCTRL_FF_N; ch++) {
-        a->ff[ch].Enable = 0;
-        LUT1D(&a->ff[ch]);
-    }
+    a->ff.Enable = 0;
+    TrajLUT(&a->ff);
     a->friction.Enable = 0;
     FrictionComp(&a->friction);
     a->lqg.Enable = 0;

@@ -5,7 +5,7 @@
  *                           here the latched I/O image) and the IMU tip rate
  *                           published by ImuRead (Cyclic #2);
  *   2. counter             (counts run time once the motion is activated);
- *   3. controller          (exp_obc: feedforward lookup + feedback law);
+ *   3. controller          (exp_obc: feedforward playback (TrajLUT) + feedback law);
  *   4. torque setpoint     (MC_BR_CyclicWrite ParID 586 + MC_BR_TorqueControl;
  *                           here the output image, published at task end).
  * Variants (Table 8.1):
@@ -72,8 +72,8 @@ typedef struct armctrl_outputs {
 typedef struct armctrl_params {
     armctrl_variant Variant;
     REAL CycleTime;                    /* task class duration [s] (1.2e-3) */
-    LUT1DParType Ff[ARMCTRL_FF_N];     /* feedforward tables over absolute time [s] */
-    DINT FfShift[ARMCTRL_FF_N];        /* per-channel lead (+) / lag (-) [cycles]; Exp. D: tau +d_i, dpsi -d_o */
+    TrajLUTParType Ff;                 /* feedforward tables, channels ARMCTRL_FF_*, with per-channel
+                                          lead/lag (Exp. D: tau +d_i, dpsi -d_o, Sec. 8.6) */
     REAL Kp, Kd;                       /* PD gains, Table 8.6: 320 Nm/rad, 200 Nm s/rad */
     FrictionCompParType Friction;      /* Table 8.6: linear, 3.04, 7.684, k = 60 */
     LQGDelayParType Lqg;               /* Exp. C/D */
@@ -85,7 +85,7 @@ typedef struct armctrl {
     const armctrl_params *par;
     armctrl_inputs in;   /* program-local copy of the inputs (latched) */
     armctrl_outputs out; /* program-local copy of the outputs (published at task end) */
-    struct LUT1D ff[ARMCTRL_FF_N];
+    struct TrajLUT ff;
     struct FrictionComp friction;
     struct LQGDelay lqg;
     struct Watchdog wd_drive, wd_imu;

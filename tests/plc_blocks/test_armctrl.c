@@ -88,14 +88,17 @@ static void exp_a_params(armctrl_params *p)
     memset(p, 0, sizeof *p);
     p->Variant = ARMCTRL_EXP_A;
     p->CycleTime = (REAL)T_CYCLE;
+    p->Ff.Channels = ARMCTRL_FF_N;
+    p->Ff.N = N_FF;
     for (ch = 0; ch < ARMCTRL_FF_N; ch++) {
-        p->Ff[ch].X0 = 0.0;
-        p->Ff[ch].Dx = T_CYCLE;
-        p->Ff[ch].pY = ff_tab[ch];
-        p->Ff[ch].N = N_FF;
-        p->Ff[ch].Interpolation = fracINTERP_LINEAR;
-        p->Ff[ch].Range = fracRANGE_CLAMP;
+        p->Ff.pData[ch] = ff_tab[ch];
     }
+    p->Ff.T0 = 0.0;
+    p->Ff.Dt = T_CYCLE;
+    p->Ff.Ts = T_CYCLE;
+    p->Ff.TMotionStart = 0.5; /* Table 8.5 */
+    p->Ff.TMotionEnd = 2.0;
+    p->Ff.Interpolation = fracINTERP_LINEAR;
     p->Kp = 320.0f; /* Table 8.6 */
     p->Kd = 200.0f;
     p->Friction.Model = fracFRICTION_LINEAR;
@@ -224,7 +227,7 @@ static void test_bad_table_never_enables_torque(void **state)
     build_ff();
     /* too short */
     exp_a_params(&par);
-    par.Ff[ARMCTRL_FF_TAU].N = 1;
+    par.Ff.N = 1;
     memset(&b, 0, sizeof b);
     run_bench(&b, &par, 3000, &a, &m);
     assert_false(b.torque_seen);
@@ -236,7 +239,7 @@ static void test_bad_table_never_enables_torque(void **state)
     memcpy(bad, ff_tab[ARMCTRL_FF_THETA], sizeof bad);
     bad[100] = (frac_real)NAN;
     exp_a_params(&par);
-    par.Ff[ARMCTRL_FF_THETA].pY = bad;
+    par.Ff.pData[ARMCTRL_FF_THETA] = bad;
     memset(&b, 0, sizeof b);
     run_bench(&b, &par, 3000, &a, &m);
     assert_false(b.torque_seen);
@@ -289,8 +292,8 @@ static void test_exp_d_sends_feedforward_torque_d_i_cycles_early(void **state)
     exp_a_params(&par);
     par.Variant = ARMCTRL_EXP_D;
     /* Sec. 8.6: u*[k + d_i] with d_i = 4; dpsi*[k - d_o] with d_o = 3 */
-    par.FfShift[ARMCTRL_FF_TAU] = 4;
-    par.FfShift[ARMCTRL_FF_DPSI] = -3;
+    par.Ff.Lead[ARMCTRL_FF_TAU] = 4;
+    par.Ff.Lead[ARMCTRL_FF_DPSI] = -3;
     /* zero gains: the torque is the (shifted) feedforward alone */
     par.Lqg.N = 1;
     par.Lqg.Di = 4;

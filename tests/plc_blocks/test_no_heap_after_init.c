@@ -63,11 +63,14 @@ static void params(armctrl_params *p, armctrl_variant v)
     memset(p, 0, sizeof *p);
     p->Variant = v;
     p->CycleTime = 1.2e-3f;
+    p->Ff.Channels = ARMCTRL_FF_N;
+    p->Ff.N = N_TAB;
     for (ch = 0; ch < ARMCTRL_FF_N; ch++) {
-        p->Ff[ch].Dx = 0.01;
-        p->Ff[ch].pY = tab;
-        p->Ff[ch].N = N_TAB;
+        p->Ff.pData[ch] = tab;
     }
+    p->Ff.Dt = 0.01;
+    p->Ff.Ts = 1.2e-3;
+    p->Ff.TMotionEnd = 0.5;
     p->Kp = 320.0f;
     p->Kd = 200.0f;
     p->Friction.K = 60.0f;
