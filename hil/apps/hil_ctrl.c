@@ -4,7 +4,8 @@
  * drive's TPDOs are in or at 0.8 T; reports the cycle jitter (SYNC send time
  * minus its schedule) as p50/p99/max and the deadline misses (jitter > T).
  * --lockstep: simulated time paced by the bus: SYNC, wait for the drive's
- * TPDOs (law), wait for the plant's end-of-step frame, next SYNC; each wait is
+ * TPDOs (law), wait for the end of the physics step (RIG_IMU_DONE), next
+ * SYNC; each wait is
  * bounded (--step-timeout, default 0.1 s; a timeout counts as a missed
  * input). For slow hosts such as a TCG-emulated guest. */
 #include <stdlib.h>
@@ -21,7 +22,8 @@ static int cmp_double(const void *a, const void *b)
 
 /* Receives and handles frames until the monotonic time `until`, or, with
  * want != 0, until that condition holds: 1 = both drive TPDOs of this cycle
- * in, 2 = the plant's end-of-step frame (RIG_MOTOR) seen. */
+ * in, 2 = the end of the physics step (RIG_IMU_DONE, sent by the IMU after
+ * the plant's RIG_MOTOR and after its own TPDOs of that step) seen. */
 static int step_done;
 
 static int serve(struct hil_transport *t, struct hil_ctrl *c, double until, int want)
@@ -43,7 +45,7 @@ static int serve(struct hil_transport *t, struct hil_ctrl *c, double until, int 
             return 0;
         if (st != HIL_OK)
             continue;
-        if (f.id == HIL_COB_RIG_MOTOR)
+        if (f.id == HIL_COB_RIG_IMU_DONE)
             step_done = 1;
         out.n = 0;
         hil_ctrl_on_frame(c, &f, &out);
@@ -100,7 +102,7 @@ int main(int argc, char **argv)
               "IMU watchdog; prints HIL_STATS and HIL_JITTER (p50/p99/max in us).\n"
               "  --cycles N          cycles to run (default: duration / T from the scenario)\n"
               "  --csv FILE          signals as the controller saw them, one row per cycle\n"
-              "  --lockstep          pace on the bus (wait for the drive and the plant) instead\n"
+              "  --lockstep          pace on the bus (wait for the drive, plant and IMU) instead\n"
               "                      of the wall clock\n"
               "  --step-timeout S    bound of each lockstep wait (default 0.1)\n");
     if (hil_ctrl_init(&c, &o.cfg.ctrl) != HIL_OK) {

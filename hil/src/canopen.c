@@ -298,3 +298,22 @@ int hil_co_rig_decode(const struct hil_can_frame *f, uint32_t cob, double *a, do
         *b = y;
     return HIL_OK;
 }
+
+int hil_co_imu_done_encode(struct hil_can_frame *f, uint16_t acquisitions)
+{
+    if (!f)
+        return HIL_E_ARG;
+    start(f, HIL_COB_RIG_IMU_DONE, 2);
+    hil_put_u16(f->data, acquisitions);
+    return HIL_OK;
+}
+
+int hil_co_imu_done_decode(const struct hil_can_frame *f, uint16_t *acquisitions)
+{
+    int st = expect(f, HIL_COB_RIG_IMU_DONE, 2);
+    if (st != HIL_OK)
+        return st;
+    if (acquisitions)
+        *acquisitions = hil_get_u16(f->data);
+    return HIL_OK;
+}

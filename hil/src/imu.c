@@ -152,6 +152,17 @@ int hil_imu_on_frame(struct hil_imu *m, const struct hil_can_frame *f, struct hi
         m->rx.accepted++;
         m->acc_r = b;
         return HIL_OK;
+    case HIL_COB_RIG_MOTOR: {
+        struct hil_can_frame ack;
+        if (hil_co_rig_decode(f, HIL_COB_RIG_MOTOR, &a, &b) != HIL_OK) {
+            m->rx.bad_value++;
+            return HIL_E_RANGE;
+        }
+        m->rx.accepted++;
+        if (hil_co_imu_done_encode(&ack, (uint16_t)m->acq) == HIL_OK)
+            hil_out_push(out, &ack);
+        return HIL_OK;
+    }
     case HIL_COB_RIG_TIP:
         if (hil_co_rig_decode(f, HIL_COB_RIG_TIP, &a, &b) != HIL_OK) {
             m->rx.bad_value++;

@@ -33,6 +33,7 @@ static int dict_dlc(uint32_t id)
     case HIL_COB_RIG_MOTOR:
     case HIL_COB_RIG_TIP:
     case HIL_COB_RIG_TIPPOS: return 8;
+    case HIL_COB_RIG_IMU_DONE: return 2;
     default: return -1;
     }
 }

@@ -28,6 +28,10 @@
  *   RIG_MOTOR  0x6F1  plant -> drive   motor-side angle [rad], velocity [rad/s]
  *   RIG_TIP    0x6F2  plant -> IMU     tip angular rate [rad/s], tangential acc [m/s^2]
  *   RIG_TIPPOS 0x6F3  plant -> IMU/log tip angle [rad], radial (centripetal) acc [m/s^2]
+ * and RIG_IMU_DONE 0x6F4 (DLC 2, acquisition counter u16): the IMU's answer
+ * to RIG_MOTOR, sent after the TPDOs of that step's acquisitions. It is the
+ * co-simulation "step complete" handshake a controller pacing in lockstep over
+ * a multi-process bus waits for, so no IMU reading slips into the next cycle.
  *
  * The codec functions validate: decoders return HIL_E_UNKNOWN_ID for a
  * different identifier and HIL_E_DLC for a wrong length, encoders HIL_E_RANGE
@@ -52,6 +56,7 @@
 #define HIL_COB_RIG_MOTOR 0x6F1u
 #define HIL_COB_RIG_TIP 0x6F2u
 #define HIL_COB_RIG_TIPPOS 0x6F3u
+#define HIL_COB_RIG_IMU_DONE 0x6F4u
 
 /* NMT command specifiers and states (CiA 301). */
 #define HIL_NMT_START 0x01u
@@ -121,6 +126,10 @@ int hil_co_imu_decode(const struct hil_can_frame *f, int which, struct hil_imu_t
 /* Rig-internal float32 pair frames (cob = HIL_COB_RIG_*). */
 int hil_co_rig_encode(struct hil_can_frame *f, uint32_t cob, double a, double b);
 int hil_co_rig_decode(const struct hil_can_frame *f, uint32_t cob, double *a, double *b);
+
+/* RIG_IMU_DONE with the IMU's acquisition counter (mod 2^16). */
+int hil_co_imu_done_encode(struct hil_can_frame *f, uint16_t acquisitions);
+int hil_co_imu_done_decode(const struct hil_can_frame *f, uint16_t *acquisitions);
 
 /* Physical value -> saturated integer count: round(x / lsb) clamped to
  * [lo, hi]. Returns HIL_OK, 1 when clamped, HIL_E_RANGE when x is not finite

@@ -12,7 +12,8 @@
  * tangential, z up, so a horizontal arm at rest reads acc = (0, 0, +g).
  * Effects per channel: bias, white Gaussian noise (std per sample) and
  * quantization to a multiple of quant (0: the wire resolution). Values beyond
- * the int16 wire range saturate and set status bit 0. */
+ * the int16 wire range saturate and set status bit 0. Each RIG_MOTOR (end of
+ * a plant step) is answered with RIG_IMU_DONE (hil/canopen.h). */
 #ifndef HIL_IMU_H
 #define HIL_IMU_H
 #include "hil/node.h"

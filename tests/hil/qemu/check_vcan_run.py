@@ -91,6 +91,7 @@ def main():
     readings = count(0x182, 8)
     check(readings >= 2 * cycles // 4 - 2 and readings == count(0x282, 8),
           "IMU TPDO1/TPDO2 frames %d/%d, one reading per 4 acquisitions" % (readings, count(0x282, 8)))
+    check(count(0x6F4, 2) == cycles, "IMU step-complete frames %d == cycles" % count(0x6F4, 2))
     check(count(0x000, 2) == 2, "NMT start and stop sent")
     injected = int(ctrl["injected"])
     check(injected == 2 * (cycles // inject_every), "malformed frames injected: %d" % injected)
