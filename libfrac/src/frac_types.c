@@ -25,6 +25,12 @@ const char *frac_status_str(int status)
     case FRAC_E_NOT_POSDEF: return "error: matrix not positive definite";
     case FRAC_E_UNSTABLE: return "error: unstable realization";
     case FRAC_E_NUMERIC: return "error: numerical failure";
+    case FRAC_E_MAGIC: return "error: table magic number wrong";
+    case FRAC_E_VERSION: return "error: table format version unsupported";
+    case FRAC_E_CRC: return "error: table CRC32 mismatch";
+    case FRAC_E_SIZE: return "error: table truncated or size inconsistent";
+    case FRAC_E_FORMAT: return "error: table layout invalid";
+    case FRAC_E_NOT_FOUND: return "error: table entry not found";
     default: return "unknown status";
     }
 }

@@ -8,7 +8,8 @@ static void test_every_status_has_a_distinct_name(void **state)
     int codes[] = {FRAC_OK, FRAC_W_CLAMPED, FRAC_W_EXTRAPOLATED, FRAC_W_MEAS_SKIPPED, FRAC_W_COV_RESET,
                    FRAC_W_SATURATED, FRAC_E_NULL, FRAC_E_NONFINITE, FRAC_E_NOT_INIT, FRAC_E_STORAGE,
                    FRAC_E_DIM, FRAC_E_ORDER, FRAC_E_BAND, FRAC_E_TS, FRAC_E_GAIN, FRAC_E_LIMITS,
-                   FRAC_E_PARAM, FRAC_E_NOT_MONOTONE, FRAC_E_NOT_POSDEF, FRAC_E_UNSTABLE, FRAC_E_NUMERIC};
+                   FRAC_E_PARAM, FRAC_E_NOT_MONOTONE, FRAC_E_NOT_POSDEF, FRAC_E_UNSTABLE, FRAC_E_NUMERIC,
+                   FRAC_E_MAGIC, FRAC_E_VERSION, FRAC_E_CRC, FRAC_E_SIZE, FRAC_E_FORMAT, FRAC_E_NOT_FOUND};
     size_t n = sizeof codes / sizeof codes[0], i, j;
     (void)state;
     for (i = 0; i < n; i++) {

@@ -104,7 +104,13 @@ typedef enum frac_status {
     FRAC_E_NOT_MONOTONE = -12, /* breakpoints not strictly increasing / data not monotone */
     FRAC_E_NOT_POSDEF = -13,   /* matrix not positive definite */
     FRAC_E_UNSTABLE = -14,     /* realization unstable (a pole outside the unit circle) */
-    FRAC_E_NUMERIC = -15       /* numerical failure (singular system, overflow) */
+    FRAC_E_NUMERIC = -15,      /* numerical failure (singular system, overflow) */
+    FRAC_E_MAGIC = -16,        /* parameter table: wrong magic number */
+    FRAC_E_VERSION = -17,      /* parameter table: unsupported format version */
+    FRAC_E_CRC = -18,          /* parameter table: CRC32 mismatch */
+    FRAC_E_SIZE = -19,         /* parameter table: truncated or total size inconsistent */
+    FRAC_E_FORMAT = -20,       /* parameter table: layout invalid (element type, names, offsets) */
+    FRAC_E_NOT_FOUND = -21     /* parameter table: no entry of that name */
 } frac_status;
 
 /* Human-readable name of a status code; never NULL. */
