@@ -11,7 +11,7 @@
 #include "hil/transport.h"
 
 /* A port base per process so parallel test runs do not collide. */
-static unsigned port_base(void) { return 20000u + (unsigned)(getpid() % 2000) * 16u; }
+static unsigned port_base(void) { return 20000u + (unsigned)(getpid() % 1000) * 16u; }
 
 static void open_bus(struct hil_transport *t, unsigned n)
 {

@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# The node executables as separate processes on the UDP loopback bus, the
+# controller pacing in lockstep, must reproduce the in-process lockstep bench
+# exactly: same controller signals cycle by cycle, same number of frames, and
+# the logger's log holds every frame the nodes sent.
+# usage: udp_lockstep_matches_bench.sh BUILD_DIR WORK_DIR SCENARIO
+set -euo pipefail
+bin=$(cd "${1:?usage: udp_lockstep_matches_bench.sh BUILD_DIR WORK_DIR SCENARIO}" && pwd)/hil
+work=${2:?}
+scen=${3:?}
+rm -rf "$work"
+mkdir -p "$work"
+port=$((40000 + ($$ % 1000) * 8)) # disjoint from test_hil_udp (20000..36000)
+bus() { echo "udp:$port:$1:5"; }
+"$bin/hil_candump" --bus "$(bus 4)" --out "$work/frames.log" --idle-exit 1 2> "$work/candump.txt" &
+sleep 0.2
+"$bin/hil_plant" --bus "$(bus 1)" --scenario "$scen" --idle-exit 1 > "$work/plant.txt" &
+"$bin/hil_drive" --bus "$(bus 2)" --scenario "$scen" --idle-exit 1 > "$work/drive.txt" &
+"$bin/hil_imu" --bus "$(bus 3)" --scenario "$scen" --idle-exit 1 > "$work/imu.txt" &
+sleep 0.2
+"$bin/hil_ctrl" --lockstep --bus "$(bus 0)" --scenario "$scen" --csv "$work/ctrl.csv" > "$work/ctrl.txt"
+wait
+cat "$work"/ctrl.txt "$work"/drive.txt "$work"/imu.txt "$work"/plant.txt "$work"/candump.txt
+"$bin/hil_bench" --scenario "$scen" --out "$work/bench"
+status=0
+sent=$(cat "$work"/ctrl.txt "$work"/drive.txt "$work"/imu.txt "$work"/plant.txt |
+       sed -n 's/^HIL_STATS .* tx=\([0-9]*\) .*/\1/p' | awk '{ s += $1 } END { print s }')
+logged=$(sed -n 's/.*logged=\([0-9]*\).*/\1/p' "$work/candump.txt")
+lines=$(wc -l < "$work/frames.log")
+bench=$(/usr/bin/python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["counts"]["frames_logged"])' "$work/bench/meta.json")
+echo "frames: sent by the node processes $sent, logged $logged ($lines lines), in-process bench $bench"
+[ "$sent" = "$logged" ] && [ "$logged" = "$lines" ] || { echo "FAIL: log does not hold every frame sent"; status=1; }
+[ "$logged" = "$bench" ] || { echo "FAIL: frame count differs from the in-process bench"; status=1; }
+if ! diff <(cut -d, -f1-7 "$work/ctrl.csv") <(cut -d, -f1-6,10 "$work/bench/signals.csv" | sed '1s/.*/t,ref,torque_cmd,motor_angle,motor_velocity,imu_rate,fault/') > "$work/diff.txt"; then
+  echo "FAIL: controller signals differ from the in-process bench:"; head -n 10 "$work/diff.txt"; status=1
+else
+  echo "controller signals identical to the in-process bench ($(($(wc -l < "$work/ctrl.csv") - 1)) cycles)"
+fi
+grep -q 'step_timeouts=0' "$work/ctrl.txt" || { echo "FAIL: a lockstep wait timed out"; status=1; }
+exit $status
