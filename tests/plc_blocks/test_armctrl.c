@@ -1,12 +1,14 @@
 /* ArmCtrl (Cyclic #1) and ImuRead (Cyclic #2) in the task runtime, lockstep
- * with a plant model: Exp. A tracks the Table 8.5 trajectory; a table that
- * fails validation never enables the torque; a stale drive ramps the
- * torque to zero; Exp. D sends the feedforward torque d_i cycles early. */
+ * with a plant model: Exp. A, C and D track the Table 8.5 trajectory (D with
+ * the input and IMU delays in the plant); a table that fails validation
+ * never enables the torque; a stale drive ramps the torque to zero; Exp. D
+ * sends the feedforward torque d_i cycles early. */
 #include "frac_test.h"
 #include "ArmCtrl.h"
 #include "ImuRead.h"
 #include "plc_rt.h"
 #include "frac/traj.h"
+#include "fixtures/armctrl_lqg_fixture.h"
 
 #include <string.h>
 
@@ -121,7 +123,11 @@ typedef struct bench {
     imuread_outputs imu_img;
     uint64_t ticks;
     uint64_t stale_from_tick; /* drive stops updating from this tick on (0 = never) */
-    double max_track_err, max_abs_tau, start_time;
+    unsigned torque_delay;    /* ticks from the published setpoint to the drive (PLC -> ACOPOS) */
+    unsigned imu_delay;       /* ticks added to the IMU path before the CAN frame */
+    double tau_hist[64], rate_hist[64]; /* ring buffers, indexed by tick */
+    double max_track_err, max_abs_tau, max_fric_est;
+    const armctrl *ctrl;      /* to watch the LQG friction estimate */
     int torque_seen;
 } bench;
 
@@ -131,6 +137,8 @@ static void bench_tick(void *ctx, uint64_t t_ns)
     double tau = b->ctrl_img.TorqueEnable ? (double)b->ctrl_img.TorqueSetpoint : 0.0;
     int i;
     (void)t_ns;
+    b->tau_hist[b->ticks % 64] = tau;
+    tau = b->ticks >= b->torque_delay ? b->tau_hist[(b->ticks - b->torque_delay) % 64] : 0.0;
     if (b->ctrl_img.TorqueEnable) {
         b->torque_seen = 1;
     }
@@ -148,11 +156,15 @@ static void bench_tick(void *ctx, uint64_t t_ns)
         b->drive_img.DriveCounter++;
     }
     /* an IMU frame every 600 us: tip rate of the rigid link */
+    b->rate_hist[b->ticks % 64] = b->pl.w_l;
     if (b->ticks % 6 == 0) {
-        b->can_img.RawRate = (REAL)b->pl.w_l;
+        b->can_img.RawRate = (REAL)(b->ticks >= b->imu_delay ? b->rate_hist[(b->ticks - b->imu_delay) % 64] : 0.0);
         b->can_img.FrameCounter++;
     }
     b->drive_img.Start = b->ticks >= 24;
+    if (b->ctrl && fabs((double)b->ctrl->lqg.FrictionEstimate) > b->max_fric_est) {
+        b->max_fric_est = fabs((double)b->ctrl->lqg.FrictionEstimate);
+    }
     /* tracking of the link angle against the trajectory at the controller's time */
     if (b->ctrl_img.Counter > 0) {
         frac_real d[5];
@@ -164,12 +176,11 @@ static void bench_tick(void *ctx, uint64_t t_ns)
     }
 }
 
-static const char *table_2_3 =
-    "[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\nviolation_reaction = service\n"
-    "[cyclic1]\nduration_us = 1200\nsim_cost_us = 300\nprograms = ArmCtrl\n"
-    "[cyclic2]\nduration_us = 600\nsim_cost_us = 50\nprograms = ImuRead\n";
-
-static void run_bench(bench *b, const armctrl_params *par, uint64_t ticks, armctrl *a, imuread *m)
+/* Table 2.3 task classes; ArmCtrl takes 300 us of CPU (its torque reaches
+ * the drive at the next tick after that) unless `instant` is set, which
+ * makes the loop an exact ZOH sampled system as the LQG designs assume. */
+static void run_bench_cost(bench *b, const armctrl_params *par, uint64_t ticks, armctrl *a, imuread *m,
+                           int instant)
 {
     plc_program pa, pm;
     const plc_program *reg[2];
@@ -177,9 +188,16 @@ static void run_bench(bench *b, const armctrl_params *par, uint64_t ticks, armct
     plc_rt rt;
     char err[256];
     armctrl_program(a, &pa, par, &b->drive_img, &b->imu_img, &b->ctrl_img);
+    b->ctrl = a;
     imuread_program(m, &pm, 1.0f, &b->can_img, &b->imu_img);
     reg[0] = &pa;
     reg[1] = &pm;
+    char table_2_3[400];
+    snprintf(table_2_3, sizeof table_2_3,
+             "[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\nviolation_reaction = service\n"
+             "[cyclic1]\nduration_us = 1200\nsim_cost_us = %d\nprograms = ArmCtrl\n"
+             "[cyclic2]\nduration_us = 600\nsim_cost_us = %d\nprograms = ImuRead\n", instant ? 0 : 300,
+             instant ? 0 : 50);
     assert_int_equal(plc_rt_config_parse(&cfg, table_2_3, "table_2_3", err, sizeof err), PLC_RT_OK);
     assert_int_equal(plc_rt_init(&rt, &cfg, reg, 2, err, sizeof err), PLC_RT_OK);
     rt.tick_hook = bench_tick;
@@ -188,6 +206,11 @@ static void run_bench(bench *b, const armctrl_params *par, uint64_t ticks, armct
     assert_int_equal(plc_rt_run_sim(&rt, ticks), PLC_RT_OK);
     assert_int_equal(rt.stats[0].violations + rt.stats[1].violations, 0);
     plc_rt_stop(&rt);
+}
+
+static void run_bench(bench *b, const armctrl_params *par, uint64_t ticks, armctrl *a, imuread *m)
+{
+    run_bench_cost(b, par, ticks, a, m, 0);
 }
 
 static void test_exp_a_tracks_table_8_5_in_lockstep(void **state)
@@ -214,6 +237,73 @@ static void test_exp_a_tracks_table_8_5_in_lockstep(void **state)
     /* torque stays in the range the thesis reports for Exp. A (-40..60 Nm) */
     assert_true(b.max_abs_tau < 60.0);
     assert_true(b.max_abs_tau > 30.0);
+}
+
+static void lqg_params(armctrl_params *p, int exp_d)
+{
+    exp_a_params(p);
+    p->Variant = exp_d ? ARMCTRL_EXP_D : ARMCTRL_EXP_C;
+    p->Lqg.N = 4;
+    p->Lqg.P = 3;
+    p->Lqg.pA = arm_A;
+    p->Lqg.pB = arm_B;
+    p->Lqg.pC = arm_C;
+    p->Lqg.pK = exp_d ? arm_K_d : arm_K_c;
+    p->Lqg.pL = exp_d ? arm_L_d : arm_L_c;
+    if (exp_d) {
+        /* Table 8.8: d_i = 4, d_o = 3 on the IMU; Sec. 8.6: torque sent 4
+         * cycles early, IMU reference delayed 3 cycles */
+        p->Lqg.Di = 4;
+        p->Lqg.Do[2] = 3;
+        p->Ff.Lead[ARMCTRL_FF_TAU] = 4;
+        p->Ff.Lead[ARMCTRL_FF_DPSI] = -3;
+    }
+}
+
+static void test_exp_c_lqg_tracks_table_8_5_in_lockstep(void **state)
+{
+    static bench b;
+    static armctrl a;
+    static imuread m;
+    armctrl_params par;
+    (void)state;
+    build_ff();
+    lqg_params(&par, 0);
+    memset(&b, 0, sizeof b);
+    run_bench_cost(&b, &par, 32000, &a, &m, 1);
+    print_message("Exp. C lockstep: max |theta_l - q| = %.3g rad, final theta_l = %.6f rad, max |tau| = %.1f Nm, "
+                  "peak friction estimate %.2f Nm\n", b.max_track_err, b.pl.th_l, b.max_abs_tau, b.max_fric_est);
+    assert_false(b.ctrl_img.Error);
+    assert_true(b.max_track_err < 1e-2);
+    assert_close(b.pl.th_l, FRAC_PI / 2, 5e-3);
+    assert_true(b.max_abs_tau < 80.0);
+    /* the disturbance state estimated the friction: at pi/2 rad/s the
+     * plant's (5.2) gives 3.04 pi/2 + 7.684 = 12.5 Nm */
+    assert_true(b.max_fric_est > 8.0 && b.max_fric_est < 20.0);
+}
+
+static void test_exp_d_lqg_with_delays_tracks_table_8_5_in_lockstep(void **state)
+{
+    static bench b;
+    static armctrl a;
+    static imuread m;
+    armctrl_params par;
+    (void)state;
+    build_ff();
+    lqg_params(&par, 1);
+    memset(&b, 0, sizeof b);
+    b.torque_delay = 48; /* d_i T = 4.8 ms */
+    b.imu_delay = 30;    /* + the 0.6 ms Cyclic #2 path = d_o T = 3.6 ms */
+    run_bench_cost(&b, &par, 32000, &a, &m, 1);
+    print_message("Exp. D lockstep: max |theta_l - q| = %.3g rad, final theta_l = %.6f rad, max |tau| = %.1f Nm, "
+                  "peak friction estimate %.2f Nm\n", b.max_track_err, b.pl.th_l, b.max_abs_tau, b.max_fric_est);
+    assert_false(b.ctrl_img.Error);
+    assert_true(b.max_track_err < 1e-2);
+    assert_close(b.pl.th_l, FRAC_PI / 2, 5e-3);
+    assert_true(b.max_abs_tau < 80.0);
+    /* the disturbance state estimated the friction: at pi/2 rad/s the
+     * plant's (5.2) gives 3.04 pi/2 + 7.684 = 12.5 Nm */
+    assert_true(b.max_fric_est > 8.0 && b.max_fric_est < 20.0);
 }
 
 static void test_bad_table_never_enables_torque(void **state)
@@ -326,6 +416,8 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_exp_a_tracks_table_8_5_in_lockstep),
+        cmocka_unit_test(test_exp_c_lqg_tracks_table_8_5_in_lockstep),
+        cmocka_unit_test(test_exp_d_lqg_with_delays_tracks_table_8_5_in_lockstep),
         cmocka_unit_test(test_bad_table_never_enables_torque),
         cmocka_unit_test(test_stale_drive_ramps_torque_to_zero),
         cmocka_unit_test(test_exp_d_sends_feedforward_torque_d_i_cycles_early),
