@@ -243,8 +243,8 @@ static frac_real lut1_value(const frac_lut1 *t, size_t i, frac_real u)
 
 int frac_lut1_eval(frac_lut1 *t, frac_real xq, frac_real *y)
 {
-    size_t i;
-    frac_real u;
+    size_t i = 0;
+    frac_real u = FRAC_R(0.0);
     int st;
     if (t == NULL || y == NULL) return FRAC_E_NULL;
     if (!t->ready) return FRAC_E_NOT_INIT;
@@ -356,8 +356,8 @@ int frac_lut2_init(frac_lut2 *t, const frac_lut_axis_params *ax1, const frac_lut
 
 int frac_lut2_eval(frac_lut2 *t, frac_real x1, frac_real x2, frac_real *z)
 {
-    size_t i, j, n2;
-    frac_real u, v, z0, z1;
+    size_t i = 0, j = 0, n2;
+    frac_real u = FRAC_R(0.0), v = FRAC_R(0.0), z0, z1;
     const frac_real *r0, *r1;
     int s1, s2;
     if (t == NULL || z == NULL) return FRAC_E_NULL;
