@@ -42,6 +42,7 @@ void app_parse(int argc, char **argv, struct app_opts *o, const char *usage)
         } else if (strcmp(a, "--bus") == 0) {
             need(i, argc, a);
             o->bus = argv[++i];
+            o->bus_given = 1;
         } else if (strcmp(a, "--scenario") == 0) {
             int st;
             need(i, argc, a);

@@ -9,6 +9,7 @@
 /* Options every node executable takes. */
 struct app_opts {
     const char *bus;       /* --bus SPEC, default socketcan:vcan0 */
+    int bus_given;         /* --bus was on the command line */
     double idle_exit;      /* --idle-exit S: stop after S seconds without a frame */
     const char *csv;       /* --csv FILE */
     const char *out;       /* --out FILE or DIR */

@@ -1,45 +1,46 @@
-/* hil_bench: the whole bench from one scenario file, in lockstep. */
+/* hil_bench: the whole bench from one scenario file.
+ *
+ * Default: lockstep in one process (hil/rig.h), deterministic, as fast as the
+ * host runs. --processes: every node as its own process (hil_ctrl, hil_drive,
+ * hil_imu, hil_plant and the hil_candump logger, found next to this
+ * executable) on one bus: --bus socketcan:IFACE, or by default a UDP loopback
+ * bus; the controller paces in lockstep over the bus, or with --realtime by
+ * the wall clock. Output in DIR: frames.log (candump format), signals.csv,
+ * meta.json, and with --processes each node's report (NODE.txt) and the
+ * effective scenario (scenario.txt) the nodes were started with. */
 #include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
 #include "app_common.h"
 
-static FILE *open_in(const char *dir, const char *name)
+static FILE *open_in(const char *dir, const char *name, const char *mode)
 {
-    char path[1024];
+    char path[PATH_MAX];
     FILE *f;
     snprintf(path, sizeof path, "%s/%s", dir, name);
-    f = fopen(path, "w");
+    f = fopen(path, mode);
     if (!f)
         perror(path);
     return f;
 }
 
-int main(int argc, char **argv)
+static int run_lockstep(const struct app_opts *o)
 {
-    struct app_opts o;
     static struct hil_rig rig;
-    FILE *log, *csv, *meta;
+    FILE *log = open_in(o->out, "frames.log", "w"), *csv = open_in(o->out, "signals.csv", "w"),
+         *meta = open_in(o->out, "meta.json", "w");
     double t0, wall;
     int st;
-    app_parse(argc, argv, &o,
-              "usage: hil_bench --scenario FILE [--out DIR] [options]\n"
-              "Runs drive, IMU, plant and controller nodes on an in-process bus in lockstep\n"
-              "(simulated time, deterministic) and writes DIR/frames.log (candump format),\n"
-              "DIR/signals.csv and DIR/meta.json. DIR defaults to hil-run.\n");
-    if (!o.out)
-        o.out = "hil-run";
-    if (mkdir(o.out, 0777) != 0 && errno != EEXIST) {
-        perror(o.out);
-        return 1;
-    }
-    log = open_in(o.out, "frames.log");
-    csv = open_in(o.out, "signals.csv");
-    meta = open_in(o.out, "meta.json");
     if (!log || !csv || !meta)
         return 1;
-    st = hil_rig_init(&rig, &o.cfg, log, csv);
+    st = hil_rig_init(&rig, &o->cfg, log, csv);
     if (st != HIL_OK) {
         fprintf(stderr, "hil_bench: invalid scenario parameters (%s)\n", hil_status_str(st));
         return 2;
@@ -55,11 +56,194 @@ int main(int argc, char **argv)
         fprintf(stderr, "hil_bench: run failed (%s)\n", hil_status_str(st));
         return 1;
     }
-    printf("hil_bench: %llu cycles (%.3f s simulated) in %.3f s wall (%.1fx real time); frames sent %llu, "
-           "lost %llu, logged %llu; final angle %.4f rad (reference %.4f)\n",
-           (unsigned long long)rig.st.cycles, rig.st.cycles * o.cfg.ctrl.T, wall,
-           wall > 0 ? rig.st.cycles * o.cfg.ctrl.T / wall : 0.0, (unsigned long long)rig.st.frames_sent,
+    printf("hil_bench: lockstep, %llu cycles (%.3f s simulated) in %.3f s wall (%.1fx real time); "
+           "frames sent %llu, lost %llu, logged %llu; final angle %.4f rad (reference %.4f)\n",
+           (unsigned long long)rig.st.cycles, rig.st.cycles * o->cfg.ctrl.T, wall,
+           wall > 0 ? rig.st.cycles * o->cfg.ctrl.T / wall : 0.0, (unsigned long long)rig.st.frames_sent,
            (unsigned long long)rig.st.frames_lost, (unsigned long long)rig.st.frames_logged,
            rig.plant.theta, rig.ctrl.sig.ref);
     return 0;
+}
+
+/* Starts exe with args, stdout and stderr to DIR/name.txt. */
+static pid_t spawn(const char *dir, const char *name, char *const argv[])
+{
+    char path[PATH_MAX];
+    pid_t pid;
+    snprintf(path, sizeof path, "%s/%s.txt", dir, name);
+    pid = fork();
+    if (pid == 0) {
+        int fd = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0666);
+        if (fd >= 0) {
+            dup2(fd, 1);
+            dup2(fd, 2);
+            close(fd);
+        }
+        execv(argv[0], argv);
+        _exit(127);
+    }
+    return pid;
+}
+
+static void pause_s(double s)
+{
+    struct timespec ts;
+    ts.tv_sec = (time_t)s;
+    ts.tv_nsec = (long)((s - (double)ts.tv_sec) * 1e9);
+    nanosleep(&ts, NULL);
+}
+
+/* Appends every "HIL_xxx k=v ..." line of DIR/name.txt as a JSON object. */
+static void report_json(FILE *meta, const char *dir, const char *name, int last)
+{
+    char line[512];
+    FILE *f = open_in(dir, name, "r");
+    int first = 1;
+    fprintf(meta, "    \"%s\": [", name);
+    while (f && fgets(line, sizeof line, f)) {
+        char *tok, *save = NULL;
+        int n = 0;
+        if (strncmp(line, "HIL_", 4) != 0)
+            continue;
+        fprintf(meta, "%s{", first ? "" : ", ");
+        first = 0;
+        for (tok = strtok_r(line, " \n", &save); tok; tok = strtok_r(NULL, " \n", &save)) {
+            char *eq = strchr(tok, '=');
+            if (n++ == 0) {
+                fprintf(meta, "\"line\": \"%s\"", tok);
+                continue;
+            }
+            if (!eq)
+                continue;
+            *eq = '\0';
+            fprintf(meta, ", \"%s\": \"%s\"", tok, eq + 1);
+        }
+        fputc('}', meta);
+    }
+    fprintf(meta, "]%s\n", last ? "" : ",");
+    if (f)
+        fclose(f);
+}
+
+static int run_processes(const struct app_opts *o, int realtime)
+{
+    static const char *nodes[] = {"hil_ctrl", "hil_plant", "hil_drive", "hil_imu", "hil_candump"};
+    char exe[PATH_MAX], dir[PATH_MAX], bin[5][PATH_MAX + 16], bus[5][64], scen[PATH_MAX + 16], logp[PATH_MAX + 16],
+         csvp[PATH_MAX + 16];
+    pid_t pid[5];
+    ssize_t n;
+    FILE *f, *meta;
+    int i, status, rc = 0;
+    unsigned port = 41000u + (unsigned)(getpid() % 1000) * 8u;
+    double t0;
+    if (o->cfg.frame_loss > 0.0 || o->cfg.imu_dropout_end > o->cfg.imu_dropout_start) {
+        fprintf(stderr, "hil_bench: frame_loss and imu_dropout are effects of the in-process bus; "
+                        "they are not available with --processes\n");
+        return 2;
+    }
+    n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (n <= 0)
+        return 1;
+    exe[n] = '\0';
+    snprintf(dir, sizeof dir, "%s", exe);
+    *strrchr(dir, '/') = '\0';
+    for (i = 0; i < 5; i++) {
+        snprintf(bin[i], sizeof bin[i], "%s/%s", dir, nodes[i]);
+        if (o->bus_given) {
+            size_t len = strlen(o->bus);
+            if (len >= sizeof bus[i]) {
+                fprintf(stderr, "hil_bench: bus spec too long\n");
+                return 2;
+            }
+            memcpy(bus[i], o->bus, len + 1);
+        } else
+            snprintf(bus[i], sizeof bus[i], "udp:%u:%d:5", port, i);
+    }
+    snprintf(scen, sizeof scen, "%s/scenario.txt", o->out);
+    snprintf(logp, sizeof logp, "%s/frames.log", o->out);
+    snprintf(csvp, sizeof csvp, "%s/signals.csv", o->out);
+    f = fopen(scen, "w");
+    if (!f || hil_rig_config_write(&o->cfg, f) != HIL_OK) {
+        perror(scen);
+        return 1;
+    }
+    fclose(f);
+    {
+        char *a[] = {bin[4], "--bus", bus[4], "--out", logp, "--idle-exit", "1", NULL};
+        pid[4] = spawn(o->out, "hil_candump", a);
+    }
+    pause_s(0.2); /* the logger listens before anyone sends */
+    for (i = 1; i < 4; i++) {
+        char *a[] = {bin[i], "--bus", bus[i], "--scenario", scen, "--idle-exit", "1", NULL};
+        pid[i] = spawn(o->out, nodes[i], a);
+    }
+    pause_s(0.2);
+    t0 = app_now();
+    {
+        char *a[] = {bin[0], realtime ? "--bus" : "--lockstep", realtime ? bus[0] : "--bus",
+                     realtime ? "--scenario" : bus[0], realtime ? scen : "--scenario",
+                     realtime ? "--csv" : scen, realtime ? csvp : "--csv", realtime ? NULL : csvp, NULL};
+        pid[0] = spawn(o->out, "hil_ctrl", a);
+    }
+    for (i = 0; i < 5; i++) {
+        if (pid[i] < 0 || waitpid(pid[i], &status, 0) < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+            fprintf(stderr, "hil_bench: %s failed (see %s/%s.txt)\n", nodes[i], o->out, nodes[i]);
+            rc = 1;
+        }
+    }
+    meta = open_in(o->out, "meta.json", "w");
+    if (!meta)
+        return 1;
+    hil_rig_meta_begin(&o->cfg, realtime ? "realtime" : "lockstep-processes", meta);
+    fprintf(meta, "  \"bus\": \"%s\",\n  \"wall_s\": %.6f,\n  \"reports\": {\n",
+            o->bus_given ? o->bus : "udp loopback", app_now() - t0);
+    for (i = 0; i < 5; i++) {
+        char name[64];
+        snprintf(name, sizeof name, "%s.txt", nodes[i]);
+        report_json(meta, o->out, name, i == 4);
+    }
+    fprintf(meta, "  }\n}\n");
+    fclose(meta);
+    f = open_in(o->out, "hil_ctrl.txt", "r");
+    while (f && fgets(exe, sizeof exe, f))
+        if (strncmp(exe, "HIL_JITTER", 10) == 0 || strncmp(exe, "HIL_CTRL", 8) == 0)
+            fputs(exe, stdout);
+    if (f)
+        fclose(f);
+    return rc;
+}
+
+int main(int argc, char **argv)
+{
+    struct app_opts o;
+    int processes = 0, realtime = 0, i;
+    for (i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--processes") == 0)
+            processes = 1;
+        else if (strcmp(argv[i], "--realtime") == 0)
+            processes = realtime = 1;
+        else
+            continue;
+        memmove(&argv[i], &argv[i + 1], (size_t)(argc - i - 1) * sizeof *argv);
+        argc--;
+        i--;
+    }
+    app_parse(argc, argv, &o,
+              "usage: hil_bench --scenario FILE [--out DIR] [--processes | --realtime] [options]\n"
+              "Runs the whole bench (controller, drive, IMU, plant, logger) from one scenario and\n"
+              "writes DIR/frames.log (candump format), DIR/signals.csv and DIR/meta.json\n"
+              "(DIR defaults to hil-run).\n"
+              "  (default)           lockstep in one process: simulated time, deterministic\n"
+              "  --processes         one process per node on --bus (default: UDP loopback),\n"
+              "                      the controller pacing in lockstep over the bus\n"
+              "  --realtime          as --processes, the controller on the wall clock; reports\n"
+              "                      the cycle jitter p50/p99/max and the deadline misses\n");
+    if (!o.out)
+        o.out = "hil-run";
+    if (mkdir(o.out, 0777) != 0 && errno != EEXIST) {
+        perror(o.out);
+        return 1;
+    }
+    signal(SIGPIPE, SIG_IGN);
+    return processes ? run_processes(&o, realtime) : run_lockstep(&o);
 }

@@ -347,16 +347,16 @@ static void rx_json(FILE *f, const char *name, const struct hil_rx_stats *s, int
             (unsigned long long)s->bad_value, last ? "" : ",");
 }
 
-int hil_rig_write_meta(const struct hil_rig *r, FILE *f, double wall_s)
+int hil_rig_meta_begin(const struct hil_rig_config *c, const char *mode, FILE *f)
 {
-    const struct hil_rig_config *c;
     size_t i;
-    if (!r || !f)
+    if (!c || !mode || !f)
         return HIL_E_ARG;
-    c = &r->cfg;
     fprintf(f, "{\n  \"schema\": \"fracarm.hil.run\",\n  \"version\": 1,\n");
     fprintf(f, "  \"software\": {\"fracarm\": \"%s\", \"hil_frames\": \"hil/fracarm.dbc\"},\n", HIL_VERSION);
-    fprintf(f, "  \"mode\": \"lockstep\",\n  \"scenario\": ");
+    fprintf(f, "  \"mode\": ");
+    json_str(f, mode);
+    fprintf(f, ",\n  \"scenario\": ");
     json_str(f, c->scenario);
     fprintf(f, ",\n  \"plant\": \"%s\",\n", c->plant);
     fprintf(f, "  \"seeds\": {\"bus\": %llu, \"imu\": %llu},\n", (unsigned long long)c->bus_seed,
@@ -381,6 +381,33 @@ int hil_rig_write_meta(const struct hil_rig *r, FILE *f, double wall_s)
             c->imu.acc_noise, c->imu.gyro_bias, c->imu.acc_bias, c->imu.gyro_quant, c->imu.acc_quant,
             c->drive.torque_rated, c->drive.torque_peak, c->frame_loss, c->imu_dropout_start,
             c->imu_dropout_end);
+    return HIL_OK;
+}
+
+int hil_rig_config_write(const struct hil_rig_config *c, FILE *f)
+{
+    size_t i;
+    if (!c || !f)
+        return HIL_E_ARG;
+    fprintf(f, "T = %.17g\nplant = %s\n", c->ctrl.T, c->plant);
+    for (i = 0; i < NKEYS; i++) {
+        const char *p = (const char *)c + keys[i].off;
+        fprintf(f, "%s = ", keys[i].name);
+        if (keys[i].type == K_DBL)
+            fprintf(f, "%.17g\n", *(const double *)p);
+        else if (keys[i].type == K_UNS)
+            fprintf(f, "%u\n", *(const unsigned *)p);
+        else
+            fprintf(f, "%llu\n", (unsigned long long)*(const uint64_t *)p);
+    }
+    return ferror(f) ? HIL_E_IO : HIL_OK;
+}
+
+int hil_rig_write_meta(const struct hil_rig *r, FILE *f, double wall_s)
+{
+    if (!r || !f)
+        return HIL_E_ARG;
+    hil_rig_meta_begin(&r->cfg, "lockstep", f);
     fprintf(f, "  \"counts\": {\"cycles\": %llu, \"frames_sent\": %llu, \"frames_lost\": %llu, "
                "\"frames_delivered\": %llu, \"frames_logged\": %llu, \"injected\": %llu, "
                "\"missed_inputs\": %llu, \"imu_readings\": %llu, \"faults\": %llu, \"emcy\": %llu},\n",

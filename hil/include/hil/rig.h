@@ -82,6 +82,12 @@ int hil_rig_init(struct hil_rig *r, const struct hil_rig_config *c, FILE *log, F
 int hil_rig_cycle(struct hil_rig *r);
 /* Runs round(duration / T) cycles, then NMT stop. */
 int hil_rig_run(struct hil_rig *r);
+/* Writes c as a scenario file (every key, %.17g: loads back bit for bit). */
+int hil_rig_config_write(const struct hil_rig_config *c, FILE *f);
+/* Opens the metadata JSON object and writes schema, version, mode, scenario,
+ * seeds, every parameter and the effects, each line ending with ",". The
+ * caller adds its own members and closes the object. */
+int hil_rig_meta_begin(const struct hil_rig_config *c, const char *mode, FILE *f);
 /* Writes the run metadata JSON (scenario, every parameter and effect, seeds,
  * version, frame counts, node receive counters). */
 int hil_rig_write_meta(const struct hil_rig *r, FILE *f, double wall_s);
