@@ -290,6 +290,21 @@ static void test_overrun_is_detected_and_releases_skipped(void **state)
     assert_int_equal(rt.stats[0].skipped, 2);
     assert_int_equal(rt.stats[0].cycles, 2);
     assert_int_equal(rt.stats[0].response_ns_max, 1500 * US);
+    {
+        /* the report names the class, its cycle time and the violations */
+        char line[256], text[1024] = "";
+        FILE *f = tmpfile();
+        assert_non_null(f);
+        plc_rt_report(&rt, f);
+        rewind(f);
+        while (fgets(line, sizeof line, f)) {
+            strncat(text, line, sizeof text - strlen(text) - 1);
+        }
+        fclose(f);
+        if (!strstr(text, "Cyclic #1        1200       2           2        2")) {
+            fail_msg("report:\n%s", text);
+        }
+    }
 }
 
 static void test_tolerance_delays_the_violation(void **state)
