@@ -2,8 +2,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <complex>
 #include <cstdio>
 
+#include "fracdesign/io/frf_csv.hpp"
 #include "fracdesign/io/signal_csv.hpp"
 
 using fracdesign::io::parse_signal_csv;
@@ -139,4 +141,23 @@ TEST(SignalCsv, reads_the_emps_export)
     EXPECT_EQ(t.size(), 24841u);
     EXPECT_NEAR(t.dt, 1e-3, 1e-8);
     EXPECT_DOUBLE_EQ(t.column("vir_V")[0], 2.53862808888);
+}
+
+TEST(FrfCsv, reads_hz_or_rad_s_and_refuses_other_units_and_bad_order)
+{
+    using fracdesign::io::parse_frf_csv;
+    const auto a = parse_frf_csv("f_hz,re,im,coh\n1,2,3,0.9\n2,4,5,0.8\n", "f.csv");
+    EXPECT_NEAR(a.w[1], 4.0 * M_PI, 1e-12);
+    EXPECT_EQ(a.G[1], std::complex<double>(4.0, 5.0));
+    const auto b = parse_frf_csv("w_rad_s,im,re\n1,2,3\n2,4,5\n", "f.csv");
+    EXPECT_EQ(b.G[0], std::complex<double>(3.0, 2.0));
+    EXPECT_THROW(parse_frf_csv("f_khz,re,im\n1,2,3\n2,4,5\n", "f.csv"), SignalCsvError);
+    EXPECT_THROW(parse_frf_csv("f_hz,re\n1,2\n2,4\n", "f.csv"), SignalCsvError);
+    try {
+        parse_frf_csv("f_hz,re,im\n1,2,3\n1,4,5\n", "f.csv");
+        FAIL();
+    } catch (const SignalCsvError& e) {
+        EXPECT_NE(std::string(e.what()).find("row 3"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(parse_frf_csv("f_hz,re,im\n-1,2,3\n1,4,5\n", "f.csv"), SignalCsvError);
 }

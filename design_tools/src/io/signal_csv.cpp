@@ -50,55 +50,75 @@ std::size_t SignalTable::index(const std::string& name) const
     throw SignalCsvError("missing column '" + name + "' (columns: " + have + ")");
 }
 
-SignalTable parse_signal_csv(const std::string& text, const std::string& origin, const SignalCsvOptions& opt)
+NumericCsv parse_numeric_csv(const std::string& text, const std::string& origin)
 {
     std::istringstream in(text);
     std::string line;
     std::size_t row = 0;
-    std::vector<std::string> header;
+    NumericCsv out;
     while (std::getline(in, line)) {
         ++row;
         if (!trim(line).empty()) {
-            header = split(line);
+            out.header = split(line);
+            out.header_row = row;
             break;
         }
     }
-    if (header.empty()) throw SignalCsvError(origin + ": empty file (expected a header row starting with 't')");
-    const std::string& t0 = header[0];
-    if (t0 != "t" && t0 != "t_s") {
-        if (t0.size() > 2 && t0.compare(0, 2, "t_") == 0)
-            fail(origin, row, t0, "time column must be in seconds ('t' or 't_s'); convert '" + t0 + "' to s");
-        fail(origin, row, t0, "first column must be the time 't' in seconds");
-    }
-    if (header.size() < 2) fail(origin, row, "", "no signal column after 't'");
+    if (out.header.empty()) throw SignalCsvError(origin + ": empty file (expected a header row)");
     std::set<std::string> seen;
-    for (const auto& h : header) {
+    for (const auto& h : out.header) {
         if (h.empty()) fail(origin, row, "", "empty column name in header");
         if (!seen.insert(h).second) fail(origin, row, h, "duplicate column name");
     }
-    SignalTable tab;
-    tab.names.assign(header.begin() + 1, header.end());
-    tab.columns.assign(tab.names.size(), {});
-    std::vector<std::size_t> file_row;  // file row of each data row, for messages
+    out.columns.assign(out.header.size(), {});
     while (std::getline(in, line)) {
         ++row;
         if (trim(line).empty()) continue;
         const auto cells = split(line);
-        if (cells.size() != header.size())
+        if (cells.size() != out.header.size())
             fail(origin, row, "", "ragged row: " + std::to_string(cells.size()) + " cells, header has " +
-                                      std::to_string(header.size()));
+                                      std::to_string(out.header.size()));
         for (std::size_t j = 0; j < cells.size(); ++j) {
             const std::string& c = cells[j];
-            if (c.empty()) fail(origin, row, header[j], "missing value");
+            if (c.empty()) fail(origin, row, out.header[j], "missing value");
             char* end = nullptr;
             errno = 0;
             const double v = std::strtod(c.c_str(), &end);
-            if (end == c.c_str() || *end != '\0') fail(origin, row, header[j], "not a number: '" + c + "'");
-            if (!std::isfinite(v) || errno == ERANGE) fail(origin, row, header[j], "non-finite value '" + c + "'");
-            (j == 0 ? tab.t : tab.columns[j - 1]).push_back(v);
+            if (end == c.c_str() || *end != '\0') fail(origin, row, out.header[j], "not a number: '" + c + "'");
+            if (!std::isfinite(v) || errno == ERANGE) fail(origin, row, out.header[j], "non-finite value '" + c + "'");
+            out.columns[j].push_back(v);
         }
-        file_row.push_back(row);
+        out.file_row.push_back(row);
     }
+    return out;
+}
+
+std::string read_text_file(const std::string& path)
+{
+    std::ifstream f(path, std::ios::binary);
+    if (!f) throw SignalCsvError(path + ": cannot open");
+    std::ostringstream ss;
+    ss << f.rdbuf();
+    return ss.str();
+}
+
+SignalTable parse_signal_csv(const std::string& text, const std::string& origin, const SignalCsvOptions& opt)
+{
+    NumericCsv raw = parse_numeric_csv(text, origin);
+    const std::vector<std::string>& header = raw.header;
+    const std::size_t hrow = raw.header_row;
+    const std::string& t0 = header[0];
+    if (t0 != "t" && t0 != "t_s") {
+        if (t0.size() > 2 && t0.compare(0, 2, "t_") == 0)
+            fail(origin, hrow, t0, "time column must be in seconds ('t' or 't_s'); convert '" + t0 + "' to s");
+        fail(origin, hrow, t0, "first column must be the time 't' in seconds");
+    }
+    if (header.size() < 2) fail(origin, hrow, "", "no signal column after 't'");
+    SignalTable tab;
+    tab.names.assign(header.begin() + 1, header.end());
+    tab.t = std::move(raw.columns[0]);
+    tab.columns.assign(raw.columns.begin() + 1, raw.columns.end());
+    const std::vector<std::size_t>& file_row = raw.file_row;
     const std::size_t n = tab.t.size();
     if (n < opt.min_rows)
         throw SignalCsvError(origin + ": too short: " + std::to_string(n) + " data rows, need at least " +
@@ -131,11 +151,7 @@ SignalTable parse_signal_csv(const std::string& text, const std::string& origin,
 
 SignalTable read_signal_csv(const std::string& path, const SignalCsvOptions& opt)
 {
-    std::ifstream f(path, std::ios::binary);
-    if (!f) throw SignalCsvError(path + ": cannot open");
-    std::ostringstream ss;
-    ss << f.rdbuf();
-    return parse_signal_csv(ss.str(), path, opt);
+    return parse_signal_csv(read_text_file(path), path, opt);
 }
 
 std::string format_signal_csv(const SignalTable& table)

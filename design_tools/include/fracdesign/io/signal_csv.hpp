@@ -41,6 +41,18 @@ struct SignalCsvOptions {
     std::size_t min_rows = 2;  // fewer data rows: "too short"
 };
 
+// The strict numeric table beneath the signal and FRF readers: a header of
+// unique non-empty names, then rows of exactly as many finite numbers (blank
+// lines skipped). file_row[k] is the 1-based file row of data row k.
+struct NumericCsv {
+    std::vector<std::string> header;
+    std::vector<std::vector<double>> columns;
+    std::vector<std::size_t> file_row;
+    std::size_t header_row = 1;
+};
+NumericCsv parse_numeric_csv(const std::string& text, const std::string& origin);
+std::string read_text_file(const std::string& path);  // SignalCsvError if it cannot be read
+
 // Parses CSV text. `origin` names the source in error messages.
 SignalTable parse_signal_csv(const std::string& text, const std::string& origin,
                              const SignalCsvOptions& opt = SignalCsvOptions());
