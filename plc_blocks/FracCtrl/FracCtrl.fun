@@ -140,3 +140,27 @@ FUNCTION_BLOCK TrajLUT (*Trajectory playback with per-channel lead/lag (seed 004
 		Traj : FracTrajLutObj;
 	END_VAR
 END_FUNCTION_BLOCK
+
+FUNCTION_BLOCK FracOp (*Fractional operator s^r with a choice of realization: GL, Oustaloup, refined Oustaloup, CFE (frac/fo_op.h)*)
+	VAR_INPUT
+		Enable : BOOL;
+		Parameters : FracOpParType;
+		Update : BOOL; (*Rising edge: take over Parameters (state restarts at 0)*)
+		Reset : BOOL; (*Rising edge: zero input history*)
+		X : REAL; (*Input*)
+	END_VAR
+	VAR_OUTPUT
+		Valid : BOOL;
+		Busy : BOOL;
+		Error : BOOL;
+		StatusID : UINT; (*fracSTAT_OK, fracERR_NONFINITE (Y holds), 51004 storage too small, 51006 order, 51007 band, 51008 sample time, fracERR_PARAM*)
+		Y : REAL; (*s^r X*)
+	END_VAR
+	VAR
+		Fb : FracFbStateType;
+		ResetOld : BOOL;
+		Bank : UDINT; (*Storage bank of the realization in effect*)
+		Op : FracFoObj;
+		Storage : ARRAY[0..1, 0..fracFO_STORAGE_LEN] OF FracReal; (*Two banks: a new set is built in the other one*)
+	END_VAR
+END_FUNCTION_BLOCK
