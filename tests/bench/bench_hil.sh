@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# HIL rig benchmarks (issue 9):
+#  1. lockstep speed, simulated seconds per wall second: the in-process bench
+#     (hil_bench) against the same scenario with every node as its own process
+#     on the UDP loopback bus (hil_bench --processes), measured in this run;
+#  2. real-time jitter at T = 1.2 ms on the UDP loopback transport: the
+#     controller's SYNC lateness p50/p99/max (hil_bench --realtime) against a
+#     bare clock_nanosleep loop at the same period (tests/hil/hil_sleep_ref.c).
+# The plant is the rigid TEST plant: the flexible-arm plants (N = 9, N = 20)
+# are not in the rig yet (docs/hil.md), so the N = 9 / N = 20 figures of the
+# issue cannot be reported.
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+. "$here/lib.sh"
+build=${FRAC_BUILD:?}
+bin=$build/hil
+cmake --build "$build" --target hil_apps hil_sleep_ref >/dev/null
+work=$(mktemp -d /tmp/bench_hil.XXXXXX)
+trap 'rm -rf "$work"' EXIT
+
+cat > "$work/speed.txt" <<SCEN
+T = 0.0012
+duration = 20
+plant = rigid
+SCEN
+speed() { sed -n 's/.*(\([0-9.]*\)x real time).*/\1/p'; }
+inproc=$("$bin/hil_bench" --scenario "$work/speed.txt" --out "$work/a" | speed)
+sed -i 's/^duration = 20/duration = 2/' "$work/speed.txt"
+wall=$("$bin/hil_bench" --processes --scenario "$work/speed.txt" --out "$work/b" |
+       sed -n 's/^HIL_JITTER .*wall_s=\([0-9.]*\).*/\1/p')
+procs=$(awk -v w="$wall" 'BEGIN { printf "%.1f", 2.0 / w }')
+printf '%-52s %12s %12s %8s\n' "lockstep speed [simulated s / wall s]" "hil_bench" "processes" "ratio"
+printf '%-52s %12s %12s %8s\n' "rigid test plant, 1.2 ms, full logging (goal >= 50)" "$inproc" "$procs" "$(ratio "$inproc" "$procs")"
+
+cat > "$work/rt.txt" <<SCEN
+T = 0.0012
+duration = 3
+plant = rigid
+SCEN
+rt=$("$bin/hil_bench" --realtime --scenario "$work/rt.txt" --out "$work/c" | sed -n 's/^HIL_JITTER //p')
+ref=$("$build/tests/hil/hil_sleep_ref" 1200 2500)
+get() { echo "$1" | tr ' ' '\n' | sed -n "s/^$2=//p"; }
+echo
+printf '%-52s %12s %12s %8s\n' "real-time jitter at 1.2 ms, UDP loopback [us]" "hil_ctrl" "bare sleep" "ratio"
+for q in p50_us p99_us max_us; do
+  printf '%-52s %12s %12s %8s\n' "$q (goal p99 <= 100)" "$(get "$rt" "$q")" "$(get "$ref" "$q")" \
+    "$(ratio "$(get "$rt" "$q")" "$(get "$ref" "$q")")"
+done
+printf '%-52s %12s %12s\n' "deadline misses (lateness > T) / cycles" \
+  "$(get "$rt" deadline_misses)/$(get "$rt" cycles)" "$(get "$ref" misses)/2500"
+echo "host load average: $(cut -d' ' -f1-3 /proc/loadavg) on $(nproc) CPUs"
