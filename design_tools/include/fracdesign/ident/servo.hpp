@@ -96,8 +96,9 @@ std::vector<T> simulate_servo_open_loop(const T* th, const std::vector<double>& 
 
 // Closed loop with `ctl` from the reference qr (m) and the signal u_add (V,
 // empty = none) added after the saturation. Starts at rest at q0 with zero
-// controller history. Fills q[k] (m) and, if u is not null, the recorded
-// controller output u_pd[k] (V, before the delay, as dSPACE logs it).
+// controller history. Fills q[k] (m) and, if u is not null, the command as
+// the EMPS rig records it: u_pd[k] + u_add[k] (V, before the delay; the
+// README's check: recorded vir = PD law + pulses at zero lag).
 template <class T>
 void simulate_servo_closed_loop(const T* th, const ServoController& ctl, const std::vector<double>& qr,
                                 const std::vector<double>& u_add, double dt, int substeps, std::vector<T>& q,
@@ -113,7 +114,7 @@ void simulate_servo_closed_loop(const T* th, const ServoController& ctl, const s
         const T qf = 0.5 * (qs + q_prev);
         const T vel = (qf - qf_prev) / dt;
         const T upd = ctl.kv * (ctl.kp * (qr[k] - qs) - vel);
-        if (u) (*u)[k] = upd;
+        if (u) (*u)[k] = u_add.empty() ? upd : upd + u_add[k];
         hist[k % hist.size()] = upd;
         T ua = hist[(k + 1) % hist.size()];  // output from `delay` samples ago (zero before start)
         if (ua > T(ctl.u_max)) ua = T(ctl.u_max);
