@@ -86,18 +86,14 @@ int frac_lqg_step(frac_lqg *c, frac_real u_star, const frac_real *y_ref, const f
         *u = c->last_u;
         return FRAC_E_NONFINITE;
     }
-    for (j = 0; j < p; j++) {
-        if (!FRAC_ISFINITE(y_ref[j])) {
-            *u = c->last_u;
-            return FRAC_E_NONFINITE;
-        }
+    if (!frac_mat_all_finite(y_ref, p)) {
+        *u = c->last_u;
+        return FRAC_E_NONFINITE;
     }
     /* C' x_hat and the innovation e_y - C_e e_hat; C_e picks beta_{j,1} for a delayed output */
+    frac_mat_vec(C, p, n, e, cx);
     for (j = 0; j < p; j++) {
-        const frac_real *crow = C + j * n;
-        frac_real s = FRAC_R(0.0);
-        for (i = 0; i < n; i++) s += crow[i] * e[i];
-        cx[j] = s;
+        frac_real s = cx[j];
         if (FRAC_ISFINITE(y[j])) {
             nu[j] = (y_ref[j] - y[j]) - (c->yoff[j] != 0 ? e[c->yoff[j]] : s);
         } else {
@@ -107,19 +103,17 @@ int frac_lqg_step(frac_lqg *c, frac_real u_star, const frac_real *y_ref, const f
     }
     /* control law (7.21): u = u* + K e_x - e_z, e_z = e_s (c_s = 1) */
     es = e[nb];
-    fb = FRAC_R(0.0);
-    for (i = 0; i < nb; i++) fb += K[i] * e[i];
+    frac_mat_vec(K, 1, nb, e, &fb);
     fb -= es;
     ubar = u_star + fb;
     eu = -fb; /* (7.20) */
     /* predictor (7.27) with the structure of (7.18)/(7.26) */
-    for (i = 0; i < n; i++) {
-        const frac_real *arow = A + i * n;
-        frac_real s = FRAC_R(0.0);
-        for (j = 0; j < n; j++) s += arow[j] * e[j];
-        /* input: xi_1 (the delayed command) or, with d_i = 0, e_u + E e_z = e_u - e_s */
-        s += B[i] * (d_i > 0 ? e[n] : eu - es);
-        t[i] = s;
+    /* model part of (7.27): x rows A' x + B' (input), the shifts, a_s = 1 */
+    frac_mat_vec(A, n, n, e, t);
+    {
+        /* input of x: xi_1 (the delayed command) or, with d_i = 0, e_u + E e_z = e_u - e_s */
+        const frac_real in = d_i > 0 ? e[n] : eu - es;
+        for (i = 0; i < n; i++) t[i] += B[i] * in;
     }
     if (d_i > 0) {
         for (i = 0; i + 1 < d_i; i++) t[n + i] = e[n + i + 1];
@@ -132,11 +126,11 @@ int frac_lqg_step(frac_lqg *c, frac_real u_star, const frac_real *y_ref, const f
         t[o + d - 1] = cx[j]; /* B_beta C'_j x (7.15)-(7.16) */
     }
     t[nb] = es; /* a_s = 1 (erratum 5) */
-    for (i = 0; i < ne; i++) {
-        const frac_real *lrow = L + i * p;
-        frac_real s = t[i];
-        for (j = 0; j < p; j++) s += lrow[j] * nu[j];
-        t[i] = s;
+    /* + L_e nu, column by column: p is small (3), ne long */
+    for (j = 0; j < p; j++) {
+        const frac_real nj = nu[j];
+        const frac_real *lcol = L + j;
+        for (i = 0; i < ne; i++) t[i] += lcol[i * p] * nj;
     }
     if (!FRAC_ISFINITE(ubar) || !frac_mat_all_finite(t, ne)) {
         *u = c->last_u;
