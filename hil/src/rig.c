@@ -1,6 +1,7 @@
 /* In-process lockstep bench; behaviour in hil/rig.h. */
 #include <ctype.h>
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
@@ -13,11 +14,13 @@
 #define HIL_VERSION "unknown"
 #endif
 
-enum { K_DBL, K_UNS, K_U64 };
+enum { K_DBL, K_UNS, K_U64, K_INT, K_REAL };
 struct key { const char *name; int type; size_t off; };
 #define D(n, f) {n, K_DBL, offsetof(struct hil_rig_config, f)}
 #define U(n, f) {n, K_UNS, offsetof(struct hil_rig_config, f)}
 #define Q(n, f) {n, K_U64, offsetof(struct hil_rig_config, f)}
+#define I(n, f) {n, K_INT, offsetof(struct hil_rig_config, f)}
+#define R(n, f) {n, K_REAL, offsetof(struct hil_rig_config, f)}
 static const struct key keys[] = {
     D("duration", duration), D("frame_loss", frame_loss), Q("bus_seed", bus_seed),
     U("inject_every", inject_every), D("imu_dropout_start", imu_dropout_start),
@@ -32,6 +35,12 @@ static const struct key keys[] = {
     D("imu.acc_noise", imu.acc_noise), D("imu.acc_quant", imu.acc_quant),
     Q("imu.seed", imu.seed), U("imu.heartbeat_acqs", imu.heartbeat_acqs),
     D("plant.J", plant_p.J), D("plant.b", plant_p.b), D("plant.L", plant_p.L),
+    D("plant.I_M", plant_p.I_M), D("plant.I_L", plant_p.I_L), D("plant.c_s", plant_p.c_s),
+    I("plant.friction", plant_p.friction.model), R("plant.fric_k", plant_p.friction.k),
+    R("plant.fric_b1", plant_p.friction.b1), R("plant.fric_b0", plant_p.friction.b0),
+    R("plant.fric_b1s", plant_p.friction.b1s), R("plant.fric_b2s", plant_p.friction.b2s),
+    R("plant.fric_b3s", plant_p.friction.b3s), R("plant.fric_v_s", plant_p.friction.v_s),
+    R("plant.fric_delta", plant_p.friction.delta),
     U("plant.substeps", plant_p.substeps),
     D("ctrl.kp", ctrl.kp), D("ctrl.kd", ctrl.kd), D("ctrl.k_tip", ctrl.k_tip),
     D("ctrl.move", ctrl.move), D("ctrl.move_start", ctrl.move_start),
@@ -60,7 +69,11 @@ int hil_rig_config_set(struct hil_rig_config *c, const char *key, const char *va
     if (!c || !key || !value)
         return HIL_E_ARG;
     if (strcmp(key, "plant") == 0) {
-        if (strcmp(value, "rigid") != 0)
+        if (strcmp(value, "rigid") == 0)
+            c->plant_p.model = HIL_PLANT_RIGID;
+        else if (strcmp(value, "twomass") == 0)
+            c->plant_p.model = HIL_PLANT_TWOMASS;
+        else
             return HIL_E_FORMAT;
         strcpy(c->plant, value);
         return HIL_OK;
@@ -80,11 +93,19 @@ int hil_rig_config_set(struct hil_rig_config *c, const char *key, const char *va
             continue;
         p = (char *)c + keys[i].off;
         errno = 0;
-        if (keys[i].type == K_DBL) {
+        if (keys[i].type == K_DBL || keys[i].type == K_REAL) {
             double v = strtod(value, &end);
             if (errno || end == value || *end || !isfinite(v))
                 return HIL_E_FORMAT;
-            *(double *)p = v;
+            if (keys[i].type == K_DBL)
+                *(double *)p = v;
+            else
+                *(frac_real *)p = (frac_real)v;
+        } else if (keys[i].type == K_INT) {
+            long v = strtol(value, &end, 10);
+            if (errno || end == value || *end || v < INT_MIN || v > INT_MAX)
+                return HIL_E_FORMAT;
+            *(int *)p = (int)v;
         } else {
             unsigned long long v;
             if (!isdigit((unsigned char)value[0]))
@@ -367,6 +388,10 @@ int hil_rig_meta_begin(const struct hil_rig_config *c, const char *mode, FILE *f
         fprintf(f, "    \"%s\": ", keys[i].name);
         if (keys[i].type == K_DBL)
             fprintf(f, "%.17g", *(const double *)p);
+        else if (keys[i].type == K_REAL)
+            fprintf(f, "%.17g", (double)*(const frac_real *)p);
+        else if (keys[i].type == K_INT)
+            fprintf(f, "%d", *(const int *)p);
         else if (keys[i].type == K_UNS)
             fprintf(f, "%u", *(const unsigned *)p);
         else
@@ -395,6 +420,10 @@ int hil_rig_config_write(const struct hil_rig_config *c, FILE *f)
         fprintf(f, "%s = ", keys[i].name);
         if (keys[i].type == K_DBL)
             fprintf(f, "%.17g\n", *(const double *)p);
+        else if (keys[i].type == K_REAL)
+            fprintf(f, "%.17g\n", (double)*(const frac_real *)p);
+        else if (keys[i].type == K_INT)
+            fprintf(f, "%d\n", *(const int *)p);
         else if (keys[i].type == K_UNS)
             fprintf(f, "%u\n", *(const unsigned *)p);
         else

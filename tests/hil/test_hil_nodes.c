@@ -388,6 +388,42 @@ static void test_rigid_plant_matches_closed_form_under_constant_torque(void **st
     assert_int_equal(hil_plant_init(&pl, &p), HIL_E_ARG);
 }
 
+static void test_twomass_plant_conserves_momentum_and_oscillates_at_gear_mode(void **state)
+{
+    struct hil_plant pl;
+    struct hil_plant_params p;
+    struct hil_out o;
+    struct hil_can_frame f;
+    double tau = 20.0, t, wn, peak = 0.0;
+    int k;
+    (void)state;
+    hil_plant_params_default(&p);
+    p.model = HIL_PLANT_TWOMASS;
+    p.friction.b1 = 0.0;
+    p.friction.b0 = 0.0;
+    p.substeps = 8;
+    assert_int_equal(hil_plant_init(&pl, &p), HIL_OK);
+    hil_co_rig_encode(&f, HIL_COB_RIG_TORQUE, tau, tau);
+    for (k = 0; k < 200; k++) {
+        o.n = 0;
+        assert_int_equal(hil_plant_on_frame(&pl, &f, &o), HIL_OK);
+        if (fabs(pl.theta - pl.psi) > peak)
+            peak = fabs(pl.theta - pl.psi);
+    }
+    /* the spring is internal: I_M theta' + I_L psi' = tau t (RK4 keeps linear invariants) */
+    t = 200 * p.T;
+    assert_rel(p.I_M * pl.omega + p.I_L * pl.psi_d, tau * t, 1e-9);
+    /* a step torque excites the gear mode: twist peaks at twice its static value
+     * tau I_L / ((I_M + I_L) c_s) (undamped second-order step response) */
+    wn = sqrt(p.c_s * (1.0 / p.I_M + 1.0 / p.I_L));
+    assert_true(wn > 200.0);
+    assert_rel(peak, 2.0 * tau * p.I_L / ((p.I_M + p.I_L) * p.c_s), 2e-3);
+    p.friction.k = 0.0; /* frac_friction_init refuses it */
+    assert_int_equal(hil_plant_init(&pl, &p), HIL_E_ARG);
+    p.model = 7;
+    assert_int_equal(hil_plant_init(&pl, &p), HIL_E_ARG);
+}
+
 /* Runs controller cycles against a drive reporting a resting shaft; IMU
  * readings arrive every second cycle while `imu_on`. Returns the RPDO torque. */
 static double ctrl_cycle(struct hil_ctrl *c, int imu_on, uint8_t *seq, struct hil_out *o)
@@ -496,6 +532,7 @@ int main(void)
         cmocka_unit_test(test_imu_noise_is_seeded_and_quantized),
         cmocka_unit_test(test_imu_saturates_and_flags_out_of_range_rates),
         cmocka_unit_test(test_rigid_plant_matches_closed_form_under_constant_torque),
+        cmocka_unit_test(test_twomass_plant_conserves_momentum_and_oscillates_at_gear_mode),
         cmocka_unit_test(test_ctrl_watchdog_ramps_torque_to_zero_and_recovers),
         cmocka_unit_test(test_ctrl_counts_missed_inputs_and_ignores_malformed),
     };

@@ -6,20 +6,34 @@
  * each half the plant sends RIG_TIPPOS(tip angle, radial acc) and
  * RIG_TIP(tip rate, tangential acc); after the second also RIG_MOTOR(shaft
  * angle, shaft velocity), the state at t_{k+1} the drive reports at the next
- * SYNC.
+ * SYNC. Integration: classical RK4, `substeps` steps per half cycle.
  *
- * Plant "rigid" (the only one so far, a named TEST plant, not the flexible
- * arm): one rigid inertia J on the driven side with viscous friction b,
- *     J theta'' = tau - b theta',   tip angle = theta, tip radius L,
- * integrated by classical RK4 with `substeps` steps per half cycle. */
+ * Two named plants so far, neither is the flexible arm of issue 9 item 4:
+ *  - "rigid" (TEST plant): one rigid inertia J with viscous friction b,
+ *        J theta'' = tau - b theta',  tip angle psi = theta;
+ *  - "twomass": the rbFFC design model of seed 004 (4.8)-(4.12): motor side
+ *    inertia I_M (driven side, n^2 I_m) joined by the gear spring c_s to the
+ *    rigid link I_L, motor friction tau_f(theta_M') by frac/friction.h
+ *    ((5.2) linear or (5.4) Stribeck, tanh-smoothed):
+ *        I_M theta_M'' = tau - c_s (theta_M - psi) - tau_f(theta_M'),
+ *        I_L psi''     = c_s (theta_M - psi).
+ * The tip is at radius L on the link: tangential acc L psi'', radial
+ * -L psi'^2. */
 #ifndef HIL_PLANT_H
 #define HIL_PLANT_H
+#include "frac/friction.h"
 #include "hil/node.h"
 
+enum hil_plant_model { HIL_PLANT_RIGID = 0, HIL_PLANT_TWOMASS = 1 };
+
 struct hil_plant_params {
+    int model;         /* enum hil_plant_model */
     double T;          /* controller cycle [s] > 0 */
-    double J;          /* inertia on the driven side [kg m^2] > 0 */
-    double b;          /* viscous friction [Nm s/rad] >= 0 */
+    double J;          /* rigid: inertia on the driven side [kg m^2] > 0 */
+    double b;          /* rigid: viscous friction [Nm s/rad] >= 0 */
+    double I_M, I_L;   /* twomass: motor (driven side) and link inertia [kg m^2] > 0 */
+    double c_s;        /* twomass: gear stiffness [Nm/rad] > 0 */
+    frac_friction_params friction; /* twomass: motor friction (frac/friction.h) */
     double L;          /* tip radius [m] > 0 */
     unsigned substeps; /* RK4 steps per half cycle, 1..1000 */
 };
@@ -27,14 +41,21 @@ struct hil_plant_params {
 struct hil_plant {
     struct hil_plant_params p;
     struct hil_rx_stats rx;
-    double t, theta, omega, alpha; /* time [s], angle, rate, acceleration */
+    frac_friction fric;
+    double t;                  /* simulated time [s] */
+    double theta, omega;       /* shaft (motor, driven side): angle, rate */
+    double psi, psi_d, psi_dd; /* link/tip: angle, rate, acceleration */
     uint64_t steps;
 };
 
-/* Test-plant defaults: J = 2.0 kg m^2, b = 1.0 Nm s/rad, L = 1.0 m,
- * 4 substeps, T = 1.2 ms (assumed round figures, not the thesis arm). */
+/* Defaults: model rigid with J = 2.0 kg m^2, b = 1.0 Nm s/rad, L = 1.0 m,
+ * 4 substeps, T = 1.2 ms (assumed round figures, not the thesis arm); the
+ * twomass fields hold seed 004's values: I_M = 160^2 * 2.29e-4 = 5.8624,
+ * I_L = 1.69e-4 + 0.7221 kg m^2, c_s = 5e4 Nm/rad (Table 8.2, notes 004b),
+ * linear friction b1 = 3.04, b0 = 7.684, k = 60 (Table 8.6). */
 void hil_plant_params_default(struct hil_plant_params *p);
-/* Validates p and starts at rest at angle 0. HIL_OK or HIL_E_ARG. */
+/* Validates p (friction by frac_friction_init for twomass) and starts at
+ * rest at angle 0. HIL_OK or HIL_E_ARG. */
 int hil_plant_init(struct hil_plant *pl, const struct hil_plant_params *p);
 /* Consumes one bus frame; same contract as hil_drive_on_frame. */
 int hil_plant_on_frame(struct hil_plant *pl, const struct hil_can_frame *f, struct hil_out *out);
