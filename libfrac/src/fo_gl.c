@@ -26,10 +26,10 @@ int frac_gl_init(frac_gl *gl, frac_real order, frac_real ts, size_t L, frac_real
     double w, scale, r;
     if (gl == NULL) return FRAC_E_NULL;
     gl->ready = 0;
-    if (storage == NULL) return FRAC_E_NULL;
     if (!FRAC_ISFINITE(order) || order < -FRAC_FO_ORDER_MAX || order > FRAC_FO_ORDER_MAX) return FRAC_E_ORDER;
     if (!FRAC_ISFINITE(ts) || ts <= FRAC_R(0.0)) return FRAC_E_TS;
     if (L == 0) return FRAC_E_DIM;
+    if (storage == NULL) return FRAC_E_NULL;
     if (len < FRAC_GL_STORAGE(L)) return FRAC_E_STORAGE;
     r = (double)order;
     scale = pow((double)ts, -r);

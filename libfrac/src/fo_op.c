@@ -33,8 +33,7 @@ int frac_fo_init(frac_fo *op, const frac_fo_params *p, frac_real *storage, size_
         op->ready = 1;
         return FRAC_OK;
     }
-    if (storage == NULL) return FRAC_E_NULL;
-    switch (p->method) {
+    switch (p->method) { /* each init validates its parameters, then the storage */
     case FRAC_FO_GL:
         st = frac_gl_init(&op->gl, p->order, p->ts, p->memory, storage, len);
         op->kind = 1;
