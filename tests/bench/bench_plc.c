@@ -1,7 +1,7 @@
 /*
  * bench_plc: workloads for bench_plc.sh (callgrind instruction counts).
  *   bench_plc armctrl A|B|C|D N  : N Cyclic #1 cycles of ArmCtrl (armctrl_cyclic)
- *   bench_plc block NAME N       : N calls of one block (lqg, lut1d, friction, trajlut);
+ *   bench_plc block NAME N       : N calls of one block (lqg, lut1d, friction, trajlut, fracop);
  *                                  the script compares the block's inclusive count
  *                                  with that of the libfrac call inside it.
  * Sizes are those of Exp. D (Table 8.8): n = 16, d_i = 4, d_o = (0, 0, 3),
@@ -164,6 +164,20 @@ static int run_block(const char *name, long n)
             TrajLUT(&b);
         }
         printf("Y0 %g status %u\n", (double)b.Y[0], (unsigned)b.StatusID);
+    } else if (!strcmp(name, "fracop")) {
+        static struct FracOp b;
+        b.Parameters.Method = fracFO_OUSTALOUP;
+        b.Parameters.Order = 0.5;
+        b.Parameters.Ts = 1.2e-3;
+        b.Parameters.Wb = 0.1;
+        b.Parameters.Wh = 1000.0;
+        b.Parameters.N = 4;
+        b.Enable = 1;
+        for (k = 0; k < n; k++) {
+            b.X = 0.001f * (REAL)(k % 100);
+            FracOp(&b);
+        }
+        printf("Y %g status %u\n", (double)b.Y, (unsigned)b.StatusID);
     } else {
         return 2;
     }
@@ -174,7 +188,7 @@ int main(int argc, char **argv)
 {
     long n;
     if (argc != 4 || (n = atol(argv[3])) <= 0) {
-        fprintf(stderr, "usage: bench_plc armctrl A|B|C|D N | bench_plc block lqg|lut1d|friction|trajlut N\n");
+        fprintf(stderr, "usage: bench_plc armctrl A|B|C|D N | bench_plc block lqg|lut1d|friction|trajlut|fracop N\n");
         return 2;
     }
     fill();

@@ -16,9 +16,10 @@ for v in A B C D; do
 done
 echo "goal applies to Exp. D (Table 8.8 sizes: n = 16, d_i = 4, d_o = 3); ratio = Ir/cycle / 6000"
 echo
-printf '%-28s %14s %14s %8s\n' "block (per call)" "block Ir" "libfrac Ir" "ratio"
+printf '%-40s %14s %14s %8s\n' "block (per call)" "block Ir" "libfrac Ir" "ratio"
 for pair in "lqg LQGDelay frac_lqg_step" "trajlut TrajLUT frac_trajlut_step" \
-            "lut1d LUT1D frac_lut1_eval" "friction FrictionComp frac_friction_eval"; do
+            "fracop FracOp frac_fo_step" "lut1d LUT1D frac_lut1_eval" \
+            "friction FrictionComp frac_friction_eval"; do
   set -- $pair
   # 2N calls minus N calls: the first call (Enable edge, parameter
   # validation over the whole table) drops out of the per-call figure
@@ -28,6 +29,6 @@ for pair in "lqg LQGDelay frac_lqg_step" "trajlut TrajLUT frac_trajlut_step" \
   d1=$(callgrind_ir "$3" "$bin" block "$1" "$cycles")
   bp=$(awk -v a="$b2" -v b="$b1" -v c="$cycles" 'BEGIN{printf "%.0f", (a-b)/c}')
   dp=$(awk -v a="$d2" -v b="$d1" -v c="$cycles" 'BEGIN{printf "%.0f", (a-b)/c}')
-  printf '%-28s %14s %14s %8s\n' "$2 / $3" "$bp" "$dp" "$(ratio "$bp" "$dp")"
+  printf '%-40s %14s %14s %8s\n' "$2 / $3" "$bp" "$dp" "$(ratio "$bp" "$dp")"
 done
 echo "ratio = block / direct libfrac call on the same inputs; goal <= 1.10"
