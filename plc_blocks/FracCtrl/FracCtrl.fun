@@ -141,6 +141,28 @@ FUNCTION_BLOCK TrajLUT (*Trajectory playback with per-channel lead/lag (seed 004
 	END_VAR
 END_FUNCTION_BLOCK
 
+FUNCTION_BLOCK ParTable (*Validates the binary parameter table emitted by fracdesign table: magic, version, size, CRC32, layout, dimensions, finiteness (frac/ptable.h)*)
+	VAR_INPUT
+		Enable : BOOL; (*Rising edge: validate the data object*)
+		pData : REFERENCE TO USINT; (*Bytes of the data object*)
+		Size : UDINT; (*Bytes available at pData*)
+		Update : BOOL; (*Rising edge: validate again (a new data object was loaded)*)
+	END_VAR
+	VAR_OUTPUT
+		Valid : BOOL; (*The table passed every check; Handle may be read*)
+		Busy : BOOL;
+		Error : BOOL;
+		StatusID : UINT; (*fracSTAT_OK, fracERR_TABLE_*, fracERR_LIBFRAC + 5 dimensions, fracERR_NONFINITE, fracERR_NULL*)
+		Entries : UDINT; (*Entries in the directory*)
+		FailEntry : DINT; (*Directory index of the failing entry, -1 = header*)
+		FailField : STRING[31]; (*Field that failed ("magic", "crc32", "entry.rows", ...)*)
+	END_VAR
+	VAR
+		Fb : FracFbStateType;
+		Handle : FracPtableObj; (*Validated table, read by the program with frac_ptable_get*)
+	END_VAR
+END_FUNCTION_BLOCK
+
 FUNCTION_BLOCK FracOp (*Fractional operator s^r with a choice of realization: GL, Oustaloup, refined Oustaloup, CFE (frac/fo_op.h)*)
 	VAR_INPUT
 		Enable : BOOL;

@@ -75,22 +75,191 @@ static void run_blocks(armctrl *a)
     a->out.TorqueSetpoint = tau;
 }
 
+/* Entry `name` of exactly rows x cols into dst. */
+static int get(const frac_ptable *t, const char *name, unsigned rows, unsigned cols, frac_real *dst)
+{
+    return frac_ptable_get(t, name, rows, cols, dst);
+}
+
+/* Number of columns of a 4-row or 1-row entry (0 if missing). */
+static int cols_of(const frac_ptable *t, const char *name, unsigned rows, unsigned *cols)
+{
+    frac_ptable_entry e;
+    int st = frac_ptable_find(t, name, &e);
+    if (st != FRAC_OK) {
+        return st;
+    }
+    if (e.rows != rows) {
+        return FRAC_E_DIM;
+    }
+    *cols = e.cols;
+    return FRAC_OK;
+}
+
+int armctrl_params_from_table(armctrl_table_storage *s, const frac_ptable *t)
+{
+    armctrl_params *p;
+    frac_real v[5];
+    unsigned n_ff, c, n, nb;
+    int st;
+    if (!s || !t) {
+        return FRAC_E_NULL;
+    }
+    p = &s->par;
+    memset(p, 0, sizeof *p);
+    if ((st = get(t, "variant", 1, 1, v)) != FRAC_OK) {
+        return st;
+    }
+    if (!(v[0] >= 0 && v[0] <= ARMCTRL_EXP_D) || v[0] != FRAC_FLOOR(v[0])) {
+        return FRAC_E_PARAM;
+    }
+    p->Variant = (armctrl_variant)(int)v[0];
+    if ((st = get(t, "ts", 1, 1, v)) != FRAC_OK) {
+        return st;
+    }
+    p->CycleTime = (REAL)v[0];
+    /* feedforward: 4 rows of N samples, played by TrajLUT */
+    if ((st = cols_of(t, "ff", ARMCTRL_FF_N, &n_ff)) != FRAC_OK) {
+        return st;
+    }
+    if (n_ff > ARMCTRL_FF_MAX) {
+        return FRAC_E_DIM;
+    }
+    if ((st = get(t, "ff", ARMCTRL_FF_N, n_ff, s->ff)) != FRAC_OK) {
+        return st;
+    }
+    p->Ff.Channels = ARMCTRL_FF_N;
+    p->Ff.N = n_ff;
+    for (c = 0; c < ARMCTRL_FF_N; c++) {
+        p->Ff.pData[c] = s->ff + c * n_ff;
+    }
+    if ((st = get(t, "ff_grid", 1, 4, v)) != FRAC_OK) {
+        return st;
+    }
+    p->Ff.T0 = v[0];
+    p->Ff.Dt = v[1];
+    p->Ff.TMotionStart = v[2];
+    p->Ff.TMotionEnd = v[3];
+    p->Ff.Ts = p->CycleTime;
+    p->Ff.Interpolation = fracINTERP_LINEAR;
+    if ((st = get(t, "ff_lead", 1, 4, v)) != FRAC_OK) {
+        return st;
+    }
+    for (c = 0; c < ARMCTRL_FF_N; c++) {
+        if (v[c] != FRAC_FLOOR(v[c]) || v[c] > 1000 || v[c] < -1000) {
+            return FRAC_E_PARAM;
+        }
+        p->Ff.Lead[c] = (DINT)v[c];
+    }
+    if ((st = get(t, "torque_limit", 1, 1, v)) != FRAC_OK) {
+        return st;
+    }
+    p->TorqueLimit = (REAL)v[0];
+    if ((st = get(t, "watchdog", 1, 2, v)) != FRAC_OK) {
+        return st;
+    }
+    if (!(v[0] >= 1 && v[0] <= 1e6)) {
+        return FRAC_E_PARAM;
+    }
+    p->WdDrive.MaxStaleCycles = (UDINT)v[0];
+    p->WdDrive.RampRate = (REAL)v[1];
+    p->WdDrive.CycleTime = p->CycleTime;
+    p->WdImu = p->WdDrive;
+    if (!uses_lqg(p)) {
+        if ((st = get(t, "pd", 1, 2, v)) != FRAC_OK) {
+            return st;
+        }
+        p->Kp = (REAL)v[0];
+        p->Kd = (REAL)v[1];
+        if ((st = get(t, "friction", 1, 3, v)) != FRAC_OK) {
+            return st;
+        }
+        p->Friction.Model = fracFRICTION_LINEAR;
+        p->Friction.B1 = (REAL)v[0];
+        p->Friction.B0 = (REAL)v[1];
+        p->Friction.K = (REAL)v[2];
+        return FRAC_OK;
+    }
+    if ((st = get(t, "lqg_dims", 1, 5, v)) != FRAC_OK) {
+        return st;
+    }
+    for (c = 0; c < 5; c++) {
+        if (!(v[c] >= 0 && v[c] <= FRAC_MAT_MAX) || v[c] != FRAC_FLOOR(v[c])) {
+            return FRAC_E_PARAM;
+        }
+    }
+    n = (unsigned)v[0];
+    nb = n + (unsigned)v[1] + (unsigned)v[2] + (unsigned)v[3] + (unsigned)v[4];
+    if (n < 1 || n > ARMCTRL_LQG_NMAX || nb + 1 > FRAC_MAT_MAX) {
+        return FRAC_E_DIM;
+    }
+    p->Lqg.N = n;
+    p->Lqg.Di = (UDINT)v[1];
+    p->Lqg.P = 3;
+    p->Lqg.Do[0] = (UDINT)v[2];
+    p->Lqg.Do[1] = (UDINT)v[3];
+    p->Lqg.Do[2] = (UDINT)v[4];
+    if ((st = get(t, "A", n, n, s->A)) != FRAC_OK || (st = get(t, "B", n, 1, s->B)) != FRAC_OK
+        || (st = get(t, "C", 3, n, s->C)) != FRAC_OK || (st = get(t, "K", 1, nb, s->K)) != FRAC_OK
+        || (st = get(t, "L", nb + 1, 3, s->L)) != FRAC_OK) {
+        return st;
+    }
+    p->Lqg.pA = s->A;
+    p->Lqg.pB = s->B;
+    p->Lqg.pC = s->C;
+    p->Lqg.pK = s->K;
+    p->Lqg.pL = s->L;
+    return FRAC_OK;
+}
+
+/* Parameters at _INIT from the data object: ParTable validates it, then it
+ * is copied into the storage. Returns the StatusID of the first failure. */
+static UINT load_table(armctrl *a)
+{
+    int st;
+    memset(&a->partable, 0, sizeof a->partable);
+    a->partable.pData = (USINT *)a->table;
+    a->partable.Size = a->table_size;
+    a->partable.Enable = 1;
+    ParTable(&a->partable);
+    if (a->partable.Error) {
+        return a->partable.StatusID;
+    }
+    st = armctrl_params_from_table(a->storage, &a->partable.Handle);
+    if (st != FRAC_OK) {
+        return (UINT)(fracERR_LIBFRAC + (UINT)(-st));
+    }
+    a->par = &a->storage->par;
+    return fracSTAT_OK;
+}
+
 void armctrl_init(void *ctx)
 {
     armctrl *a = (armctrl *)ctx;
-    const armctrl_params *p = a->par;
+    const armctrl_params *p;
     UINT st = fracSTAT_OK;
+
+    memset(&a->out, 0, sizeof a->out);
+    a->fault = 0;
+    if (a->table) {
+        st = load_table(a);
+        if (st != fracSTAT_OK) {
+            a->fault = 1;
+            a->out.Error = 1;
+            a->out.StatusID = st;
+            return;
+        }
+    }
+    p = a->par;
 
     memset(&a->ff, 0, sizeof a->ff);
     memset(&a->friction, 0, sizeof a->friction);
     memset(&a->lqg, 0, sizeof a->lqg);
     memset(&a->wd_drive, 0, sizeof a->wd_drive);
     memset(&a->wd_imu, 0, sizeof a->wd_imu);
-    memset(&a->out, 0, sizeof a->out);
     a->counter = 0;
     a->running = 0;
     a->start_old = 1; /* a Start already TRUE at power-on is not an edge */
-    a->fault = 0;
     a->ff.Parameters = p->Ff;
     a->ff.Enable = 1;
     a->wd_drive.Parameters = p->WdDrive;
@@ -158,6 +327,8 @@ void armctrl_exit(void *ctx)
 {
     armctrl *a = (armctrl *)ctx;
     /* disable every block: outputs to zero, StatusID fracSTAT_DISABLED */
+    a->partable.Enable = 0;
+    ParTable(&a->partable);
     a->ff.Enable = 0;
     TrajLUT(&a->ff);
     a->friction.Enable = 0;
@@ -201,4 +372,14 @@ void armctrl_program(armctrl *a, plc_program *prog, const armctrl_params *par, a
     prog->n_inputs = imu_image ? 3 : 1;
     prog->outputs = &a->io_out;
     prog->n_outputs = 1;
+}
+
+void armctrl_program_table(armctrl *a, plc_program *prog, const void *table, UDINT size,
+                           armctrl_table_storage *storage, armctrl_inputs *image_in, imuread_outputs *imu_image,
+                           armctrl_outputs *image_out)
+{
+    armctrl_program(a, prog, &storage->par, image_in, imu_image, image_out);
+    a->table = table;
+    a->table_size = size;
+    a->storage = storage;
 }

@@ -29,6 +29,8 @@
 #include "FracCtrl.h"
 #include "ImuRead.h"
 #include "plc_rt.h"
+#include "frac/mat.h"
+#include "frac/ptable.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -81,8 +83,53 @@ typedef struct armctrl_params {
     REAL TorqueLimit;                  /* |tau| limit [Nm] (thesis [GAP]; drive peak ~251 Nm) */
 } armctrl_params;
 
+/*
+ * ArmCtrl's parameter table (the data object of `fracdesign table`,
+ * validated by the ParTable block, frac/ptable.h). Entries, row-major:
+ *   "variant"      1 x 1  0..3 = Exp. A..D
+ *   "ts"           1 x 1  cycle time T [s] (1.2e-3)
+ *   "ff"           4 x N  feedforward rows theta_M*, dtheta_M*, dpsi_L*, tau_M*, N <= ARMCTRL_FF_MAX
+ *   "ff_grid"      1 x 4  table time of sample 0, sample time, nominal motion start and end [s]
+ *   "ff_lead"      1 x 4  lead (+) / lag (-) per row [cycles] (Exp. D: 0, 0, -3, 4)
+ *   "torque_limit" 1 x 1  [Nm]
+ *   "watchdog"     1 x 2  max stale cycles, ramp rate [Nm/s]
+ * Exp. A/B:
+ *   "pd"           1 x 2  K_P [Nm/rad], K_D [Nm s/rad] (Table 8.6)
+ *   "friction"     1 x 3  b_1 [Nm s/rad], b_0 [Nm], k (linear model (5.2), Table 8.6)
+ * Exp. C/D:
+ *   "lqg_dims"     1 x 5  n, d_i, d_o of theta_M, dtheta_M, dpsi_L
+ *   "A" n x n, "B" n x 1, "C" 3 x n, "K" 1 x n_bar, "L" (n_bar + 1) x 3
+ *                         (n_bar = n + d_i + sum d_o, frac/lqg.h)
+ */
+#define ARMCTRL_FF_MAX 4096
+#define ARMCTRL_LQG_NMAX 32
+
+/* Caller-owned storage the table's values are copied into at _INIT. */
+typedef struct armctrl_table_storage {
+    frac_real ff[ARMCTRL_FF_N * ARMCTRL_FF_MAX];
+    frac_real A[ARMCTRL_LQG_NMAX * ARMCTRL_LQG_NMAX];
+    frac_real B[ARMCTRL_LQG_NMAX];
+    frac_real C[3 * ARMCTRL_LQG_NMAX];
+    frac_real K[FRAC_MAT_MAX];
+    frac_real L[FRAC_MAT_MAX * 3];
+    armctrl_params par;
+} armctrl_table_storage;
+
+/*
+ * Fills s->par (and the arrays it points to) from a validated table.
+ * Returns FRAC_OK or the first failure: FRAC_E_NOT_FOUND (entry missing),
+ * FRAC_E_DIM (entry size not as listed above or above the capacities),
+ * FRAC_E_PARAM (variant or a dimension out of range), FRAC_E_NULL.
+ * Values themselves are validated by the blocks at _INIT.
+ */
+int armctrl_params_from_table(armctrl_table_storage *s, const frac_ptable *t);
+
 typedef struct armctrl {
     const armctrl_params *par;
+    const void *table;              /* data object, or NULL when par is given directly */
+    UDINT table_size;
+    armctrl_table_storage *storage; /* where the table's values go */
+    struct ParTable partable;
     armctrl_inputs in;   /* program-local copy of the inputs (latched) */
     armctrl_outputs out; /* program-local copy of the outputs (published at task end) */
     struct TrajLUT ff;
@@ -103,6 +150,17 @@ typedef struct armctrl {
  */
 void armctrl_program(armctrl *a, plc_program *prog, const armctrl_params *par, armctrl_inputs *image_in,
                      imuread_outputs *imu_image, armctrl_outputs *image_out);
+
+/*
+ * As armctrl_program, but the parameters come from the data object
+ * `table` (size bytes) at _INIT: ParTable validates it, then
+ * armctrl_params_from_table copies it into *storage. A table that fails
+ * leaves the program in fault with the failing StatusID: the torque is
+ * never enabled.
+ */
+void armctrl_program_table(armctrl *a, plc_program *prog, const void *table, UDINT size,
+                           armctrl_table_storage *storage, armctrl_inputs *image_in, imuread_outputs *imu_image,
+                           armctrl_outputs *image_out);
 
 void armctrl_init(void *ctx);   /* _INIT */
 void armctrl_cyclic(void *ctx); /* _CYCLIC */

@@ -9,6 +9,7 @@
 #include "plc_rt.h"
 #include "frac/traj.h"
 #include "fixtures/armctrl_lqg_fixture.h"
+#include "ptable_writer.h"
 
 #include <string.h>
 
@@ -179,20 +180,18 @@ static void bench_tick(void *ctx, uint64_t t_ns)
 /* Table 2.3 task classes; ArmCtrl takes 300 us of CPU (its torque reaches
  * the drive at the next tick after that) unless `instant` is set, which
  * makes the loop an exact ZOH sampled system as the LQG designs assume. */
-static void run_bench_cost(bench *b, const armctrl_params *par, uint64_t ticks, armctrl *a, imuread *m,
-                           int instant)
+static void run_bench_prog(bench *b, plc_program *pa, uint64_t ticks, armctrl *a, imuread *m, int instant)
 {
-    plc_program pa, pm;
+    plc_program pm;
     const plc_program *reg[2];
     plc_rt_config cfg;
     plc_rt rt;
     char err[256];
-    armctrl_program(a, &pa, par, &b->drive_img, &b->imu_img, &b->ctrl_img);
+    char table_2_3[400];
     b->ctrl = a;
     imuread_program(m, &pm, 1.0f, &b->can_img, &b->imu_img);
-    reg[0] = &pa;
+    reg[0] = pa;
     reg[1] = &pm;
-    char table_2_3[400];
     snprintf(table_2_3, sizeof table_2_3,
              "[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\nviolation_reaction = service\n"
              "[cyclic1]\nduration_us = 1200\nsim_cost_us = %d\nprograms = ArmCtrl\n"
@@ -206,6 +205,17 @@ static void run_bench_cost(bench *b, const armctrl_params *par, uint64_t ticks, 
     assert_int_equal(plc_rt_run_sim(&rt, ticks), PLC_RT_OK);
     assert_int_equal(rt.stats[0].violations + rt.stats[1].violations, 0);
     plc_rt_stop(&rt);
+}
+
+/* Table 2.3 task classes; ArmCtrl takes 300 us of CPU (its torque reaches
+ * the drive at the next tick after that) unless `instant` is set, which
+ * makes the loop an exact ZOH sampled system as the LQG designs assume. */
+static void run_bench_cost(bench *b, const armctrl_params *par, uint64_t ticks, armctrl *a, imuread *m,
+                           int instant)
+{
+    plc_program pa;
+    armctrl_program(a, &pa, par, &b->drive_img, &b->imu_img, &b->ctrl_img);
+    run_bench_prog(b, &pa, ticks, a, m, instant);
 }
 
 static void run_bench(bench *b, const armctrl_params *par, uint64_t ticks, armctrl *a, imuread *m)
@@ -306,7 +316,123 @@ static void test_exp_d_lqg_with_delays_tracks_table_8_5_in_lockstep(void **state
     assert_true(b.max_fric_est > 8.0 && b.max_fric_est < 20.0);
 }
 
-static void test_bad_table_never_enables_torque(void **state)
+/* ---- parameters from the binary data object (ArmCtrl.h entry list) ---- */
+static unsigned char table_buf[ARMCTRL_FF_N * N_FF * 8 + 16384];
+static double ff_d[ARMCTRL_FF_N * N_FF], mat_d[5][(23 + 1) * 23];
+
+/* Writes ArmCtrl's table for Exp. A (lqg = 0) or the fixture LQG designs
+ * (1 = Exp. C, 2 = Exp. D); `drop` omits the entry of that name, `pd_cols`
+ * sets the columns of "pd" (2 is right). Returns the size. */
+static unsigned long arm_table(int lqg, const char *drop, unsigned pd_cols)
+{
+    static const double ts = T_CYCLE, limit = 250.0, pd[3] = {320.0, 200.0, 0.0};
+    static const double grid[4] = {0.0, T_CYCLE, 0.5, 2.0}, wd[2] = {2.0, 200.0};
+    static const double fric[3] = {FRIC_B1, FRIC_B0, KTANH};
+    static const double lead_a[4] = {0, 0, 0, 0}, lead_d[4] = {0, 0, -3, 4};
+    static const double dims_c[5] = {4, 0, 0, 0, 0}, dims_d[5] = {4, 4, 0, 0, 3};
+    double variant = lqg == 0 ? ARMCTRL_EXP_A : (lqg == 1 ? ARMCTRL_EXP_C : ARMCTRL_EXP_D);
+    unsigned nb = lqg == 2 ? 11 : 4, i, j, n = 0;
+    const frac_real *src[5];
+    unsigned len[5];
+    ptw_entry e[16], *all = e;
+    for (i = 0; i < ARMCTRL_FF_N; i++) {
+        for (j = 0; j < N_FF; j++) {
+            ff_d[i * N_FF + j] = (double)ff_tab[i][j];
+        }
+    }
+    src[0] = arm_A; len[0] = 16;
+    src[1] = arm_B; len[1] = 4;
+    src[2] = arm_C; len[2] = 12;
+    src[3] = lqg == 2 ? arm_K_d : arm_K_c; len[3] = nb;
+    src[4] = lqg == 2 ? arm_L_d : arm_L_c; len[4] = (nb + 1) * 3;
+    for (i = 0; i < 5; i++) {
+        for (j = 0; j < len[i]; j++) {
+            mat_d[i][j] = (double)src[i][j];
+        }
+    }
+#define ENTRY(nm, r, c, v) do { all[n].name = nm; all[n].rows = r; all[n].cols = c; all[n].values = v; \
+        if (!drop || strcmp(drop, nm)) n++; } while (0)
+    ENTRY("variant", 1, 1, &variant);
+    ENTRY("ts", 1, 1, &ts);
+    ENTRY("ff", ARMCTRL_FF_N, N_FF, ff_d);
+    ENTRY("ff_grid", 1, 4, grid);
+    ENTRY("ff_lead", 1, 4, lqg == 2 ? lead_d : lead_a);
+    ENTRY("torque_limit", 1, 1, &limit);
+    ENTRY("watchdog", 1, 2, wd);
+    if (lqg == 0) {
+        ENTRY("pd", 1, pd_cols, pd);
+        ENTRY("friction", 1, 3, fric);
+    } else {
+        ENTRY("lqg_dims", 1, 5, lqg == 2 ? dims_d : dims_c);
+        ENTRY("A", 4, 4, mat_d[0]);
+        ENTRY("B", 4, 1, mat_d[1]);
+        ENTRY("C", 3, 4, mat_d[2]);
+        ENTRY("K", 1, nb, mat_d[3]);
+        ENTRY("L", nb + 1, 3, mat_d[4]);
+    }
+#undef ENTRY
+    return ptw_write(table_buf, sizeof table_buf, "armctrl", e, n);
+}
+
+static void run_table_bench(bench *b, unsigned long size, uint64_t ticks, int instant)
+{
+    static armctrl a;
+    static imuread m;
+    static armctrl_table_storage storage;
+    plc_program pa;
+    assert_true(size > 0);
+    armctrl_program_table(&a, &pa, table_buf, (UDINT)size, &storage, &b->drive_img, &b->imu_img, &b->ctrl_img);
+    run_bench_prog(b, &pa, ticks, &a, &m, instant);
+}
+
+static void test_exp_a_and_d_load_the_parameter_table_and_track(void **state)
+{
+    static bench b;
+    (void)state;
+    build_ff();
+    memset(&b, 0, sizeof b);
+    run_table_bench(&b, arm_table(0, NULL, 2), 32000, 0);
+    assert_false(b.ctrl_img.Error);
+    assert_true(b.max_track_err < 5e-3);
+    assert_close(b.pl.th_l, FRAC_PI / 2, 2e-3);
+    memset(&b, 0, sizeof b);
+    b.torque_delay = 48;
+    b.imu_delay = 30;
+    run_table_bench(&b, arm_table(2, NULL, 2), 32000, 1);
+    assert_false(b.ctrl_img.Error);
+    assert_true(b.max_track_err < 1e-2);
+    assert_close(b.pl.th_l, FRAC_PI / 2, 5e-3);
+}
+
+static void expect_no_torque(unsigned long size, UINT status)
+{
+    static bench b;
+    memset(&b, 0, sizeof b);
+    run_table_bench(&b, size, 3000, 0);
+    assert_false(b.torque_seen);
+    assert_true(b.ctrl_img.Error);
+    assert_int_equal(b.ctrl_img.StatusID, status);
+    assert_true(b.max_abs_tau == 0.0);
+}
+
+static void test_table_failing_validation_never_enables_torque(void **state)
+{
+    unsigned long size;
+    (void)state;
+    build_ff();
+    size = arm_table(0, NULL, 2);
+    table_buf[size / 2] ^= 0x10; /* one bit of a feedforward value */
+    expect_no_torque(size, fracERR_TABLE_CRC);
+    size = arm_table(2, NULL, 2);
+    table_buf[0] = 'Z';
+    expect_no_torque(size, fracERR_TABLE_MAGIC);
+    expect_no_torque(arm_table(0, NULL, 2) - 1, fracERR_TABLE_SIZE);
+    expect_no_torque(arm_table(0, "friction", 2), fracERR_TABLE_NOT_FOUND);
+    expect_no_torque(arm_table(2, "L", 2), fracERR_TABLE_NOT_FOUND);
+    expect_no_torque(arm_table(0, NULL, 3), fracERR_LIBFRAC - FRAC_E_DIM);
+}
+
+static void test_invalid_parameters_never_enable_torque(void **state)
 {
     static bench b;
     static armctrl a;
@@ -418,7 +544,9 @@ int main(void)
         cmocka_unit_test(test_exp_a_tracks_table_8_5_in_lockstep),
         cmocka_unit_test(test_exp_c_lqg_tracks_table_8_5_in_lockstep),
         cmocka_unit_test(test_exp_d_lqg_with_delays_tracks_table_8_5_in_lockstep),
-        cmocka_unit_test(test_bad_table_never_enables_torque),
+        cmocka_unit_test(test_invalid_parameters_never_enable_torque),
+        cmocka_unit_test(test_exp_a_and_d_load_the_parameter_table_and_track),
+        cmocka_unit_test(test_table_failing_validation_never_enables_torque),
         cmocka_unit_test(test_stale_drive_ramps_torque_to_zero),
         cmocka_unit_test(test_exp_d_sends_feedforward_torque_d_i_cycles_early),
     };

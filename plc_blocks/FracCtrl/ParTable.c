@@ -1,0 +1,55 @@
+/*
+ * ParTable - validation of the binary parameter table (FracCtrl.fun) on
+ * frac_ptable (frac/ptable.h). Parameters load at _INIT from the data
+ * object that fracdesign table emits; a table that fails any check (magic,
+ * version, size, CRC32, layout, dimensions, finiteness) leaves the block in
+ * Error with the check's StatusID and the failing field, so the program
+ * never uses it. The table is validated once per Enable or Update edge
+ * (O(size)); other calls only report. The handle in effect is replaced
+ * only by a table that passed.
+ */
+#include "FracCtrl.h"
+#include "fracctrl_status.h"
+#include "frac/ptable.h"
+
+static void copy_field(plcstring *dst, const char *src, unsigned cap)
+{
+    unsigned i = 0;
+    if (src) {
+        for (; i + 1 < cap && src[i]; i++) {
+            dst[i] = src[i];
+        }
+    }
+    dst[i] = '\0';
+}
+
+void ParTable(struct ParTable* inst)
+{
+    int enable_edge;
+
+    if (!inst->Enable) {
+        fracctrl_disable(&inst->Fb);
+        fracctrl_report_disabled(&inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
+        inst->Entries = 0;
+        inst->FailEntry = -1;
+        copy_field(inst->FailField, "", sizeof inst->FailField);
+        return;
+    }
+    if (fracctrl_load_edge(&inst->Fb, inst->Enable, inst->Update, &enable_edge)) {
+        frac_ptable fresh;
+        int st = frac_ptable_open(&fresh, inst->pData, (unsigned long)inst->Size);
+        fracctrl_par_result(&inst->Fb, fracctrl_status_id(st), enable_edge);
+        if (st == FRAC_OK) {
+            inst->Handle = fresh;
+            inst->Entries = (UDINT)fresh.n_entries;
+        }
+        inst->FailEntry = st == FRAC_OK ? -1 : (DINT)fresh.fail_entry;
+        copy_field(inst->FailField, st == FRAC_OK ? "" : fresh.fail_field, sizeof inst->FailField);
+    }
+    if (!inst->Fb.ParOk) {
+        fracctrl_report_no_par(&inst->Fb, &inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
+        inst->Entries = 0;
+        return;
+    }
+    fracctrl_report(&inst->Fb, FRAC_OK, &inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
+}
