@@ -12,6 +12,9 @@ static int axis_init(frac_lut_axis *a, const frac_real *x, size_t n, frac_real x
     a->x = x;
     a->n = n;
     a->cache = 0;
+    a->smax = (frac_real)(n - 1);
+    a->pow2 = 1;
+    while (a->pow2 * 2 <= n - 1) a->pow2 *= 2;
     if (x == NULL) {
         if (!FRAC_ISFINITE(x0) || !FRAC_ISFINITE(h) || !(h > FRAC_R(0.0))) return FRAC_E_PARAM;
         a->lo = x0;
@@ -52,7 +55,7 @@ static int axis_locate(frac_lut_axis *a, frac_real xq, int range, size_t *seg, f
     if (a->x == NULL) {
         frac_real s = (xq - a->lo) * a->inv_h;
         /* the common case first; NaN fails both comparisons */
-        if (s >= FRAC_R(0.0) && s < (frac_real)(a->n - 1)) {
+        if (s >= FRAC_R(0.0) && s < a->smax) {
             long il = (long)s;
             *seg = (size_t)il;
             *t = s - (frac_real)il;
@@ -71,16 +74,15 @@ static int axis_locate(frac_lut_axis *a, frac_real xq, int range, size_t *seg, f
             return FRAC_OK;
         }
         if (xq >= a->lo && xq < a->hi) {
-            /* largest i with x[i] <= xq, among 0..n-2 */
-            size_t base = 0, len = a->n - 1;
-            while (len > 1) {
-                size_t half = len >> 1;
-                if (x[base + half] <= xq) base += half;
-                len -= half;
-            }
-            a->cache = base;
-            *seg = base;
-            *t = (xq - x[base]) / (x[base + 1] - x[base]);
+            /* largest i in 0..m-1 (m = n - 1 segments) with x[i] <= xq:
+             * the first probe picks one of the two overlapping blocks
+             * [0, P) and [m - P, m) (P = pow2 > m/2), then P/2, ..., 1 */
+            size_t step = a->pow2;
+            i = (x[step] <= xq) ? a->n - 1 - step : 0;
+            for (step >>= 1; step > 0; step >>= 1) i = (x[i + step] <= xq) ? i + step : i;
+            a->cache = i;
+            *seg = i;
+            *t = (xq - x[i]) / (x[i + 1] - x[i]);
             return FRAC_OK;
         }
         if (xq != xq) return FRAC_E_NONFINITE;

@@ -7,9 +7,11 @@
  * both linear and shape-preserving cubic are offered here).
  *
  * Breakpoints: uniform (x_i = x0 + i h, index found in O(1)) or a
- * strictly increasing array (binary search, O(log n), with the last
- * segment cached so that sequential queries cost O(1)). Non-increasing
- * breakpoints are rejected at init with FRAC_E_NOT_MONOTONE.
+ * strictly increasing array (branch-free binary search in ceil(log2 n)
+ * fixed power-of-two steps, L. E. Shar's variant; the last segment found
+ * is tried first, so repeated queries in one segment, as in a slow
+ * playback, cost O(1)). Non-increasing breakpoints are rejected at init
+ * with FRAC_E_NOT_MONOTONE.
  *
  * Interpolation on segment i, t = (x - x_i) / (x_{i+1} - x_i) in [0, 1):
  *  - linear: y = y_i + t (y_{i+1} - y_i)
@@ -55,6 +57,8 @@ typedef struct frac_lut_axis {
     size_t n;           /* number of knots, >= 2 */
     frac_real lo, hi;   /* first and last knot */
     frac_real h, inv_h; /* uniform spacing and its inverse */
+    frac_real smax;     /* n - 1 as frac_real (uniform range test) */
+    size_t pow2;        /* largest power of 2 <= n - 1 (breakpoint search) */
     size_t cache;       /* last segment found (breakpoint search) */
 } frac_lut_axis;
 
