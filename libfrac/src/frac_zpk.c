@@ -66,6 +66,18 @@ double frac_zpk_bilinear_root(double a, double c)
     return (c - a) / (c + a);
 }
 
+int frac_zpk_add_bilinear(frac_zpk_roots *r, double sre, double sim, double c, double *gain)
+{
+    cplx z;
+    if (r->n >= FRAC_ZPK_MAXROOTS) return FRAC_E_DIM;
+    z = c_div(c_make(c + sre, sim), c_make(c - sre, -sim));
+    r->re[r->n] = z.re;
+    r->im[r->n] = sim > 0.0 ? fabs(z.im) : 0.0;
+    r->n++;
+    *gain *= sim > 0.0 ? (c - sre) * (c - sre) + sim * sim : c - sre;
+    return FRAC_OK;
+}
+
 int frac_zpk_polyroots(const double *c, int deg, frac_zpk_roots *out)
 {
     cplx z[FRAC_ZPK_MAXROOTS];

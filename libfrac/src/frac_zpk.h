@@ -58,4 +58,12 @@ int frac_zpk_to_sos(const frac_zpk_roots *zeros, const frac_zpk_roots *poles, do
  * z-plane root (c - a)/(c + a), and the factor's gain (c + a). */
 double frac_zpk_bilinear_root(double a, double c);
 
+/*
+ * Bilinear map (c = 2/Ts) of the s-plane root s0 = sre + j sim of a
+ * factor (s - s0), sim >= 0 (sim > 0: the conjugate pair): appends the
+ * z-plane root (c + s0)/(c - s0) and multiplies *gain by the factor's
+ * gain c - s0 (|c - s0|^2 for a pair). FRAC_E_DIM when full.
+ */
+int frac_zpk_add_bilinear(frac_zpk_roots *r, double sre, double sim, double c, double *gain);
+
 #endif /* FRAC_ZPK_H */
