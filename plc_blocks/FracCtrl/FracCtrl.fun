@@ -186,3 +186,32 @@ FUNCTION_BLOCK FracOp (*Fractional operator s^r with a choice of realization: GL
 		Storage : ARRAY[0..1, 0..fracFO_STORAGE_LEN] OF FracReal; (*Two banks: a new set is built in the other one*)
 	END_VAR
 END_FUNCTION_BLOCK
+
+FUNCTION_BLOCK FOPID (*Fractional PI^lambda D^mu controller with derivative filter, limits, anti-windup and manual mode; FO-PI, FO-PD and the Delta = 1/K variant of seed 001 (frac/fopid.h)*)
+	VAR_INPUT
+		Enable : BOOL;
+		Parameters : FOPIDParType;
+		Update : BOOL; (*Rising edge: take over Parameters (state restarts at 0)*)
+		Reset : BOOL; (*Rising edge: zero state*)
+		W : REAL; (*Set point*)
+		X : REAL; (*Actual value*)
+		Manual : BOOL; (*TRUE: Y = Y_manual; switching back to automatic is bumpless*)
+		Y_manual : REAL;
+	END_VAR
+	VAR_OUTPUT
+		Valid : BOOL;
+		Busy : BOOL;
+		Error : BOOL;
+		StatusID : UINT; (*fracSTAT_OK, fracWRN_SATURATED, fracERR_NONFINITE (Y holds), 51006 order, 51009 gain, 51010 limits, fracERR_PARAM, 51004 storage*)
+		Y : REAL; (*Controller output*)
+		Saturated : BOOL; (*Y at Y_min or Y_max*)
+	END_VAR
+	VAR
+		Fb : FracFbStateType;
+		ResetOld : BOOL;
+		ManualOld : BOOL;
+		Bank : UDINT;
+		Pid : FracFopidObj;
+		Storage : ARRAY[0..1, 0..fracFOPID_STORAGE_LEN] OF FracReal; (*Two banks: a new set is built in the other one*)
+	END_VAR
+END_FUNCTION_BLOCK

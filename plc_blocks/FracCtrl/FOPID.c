@@ -1,0 +1,96 @@
+/*
+ * FOPID - fractional PI^lambda D^mu controller (FracCtrl.fun) on
+ * frac_fopid (frac/fopid.h): FO-PI^alpha (seed 001 (5)), FO-PD^mu (29) and
+ * the PD with positive feedback Delta = 1/K ((36)-(41)), with derivative
+ * filter, output limits, anti-windup (clamp or back-calculation) and a
+ * bumpless manual mode. The body maps the pins onto frac_fopid_init /
+ * _step / _set_mode / _set_manual / _reset; a new parameter set is built
+ * in the storage bank not in use and replaces the running controller only
+ * if valid (an accepted one starts from zero state). Cost per call: one
+ * frac_fopid_step (two fractional operators + ~20 flops).
+ */
+#include "FracCtrl.h"
+#include "fracctrl_status.h"
+#include "frac/fopid.h"
+
+typedef char fopid_check_aw[((int)fracAW_NONE == (int)FRAC_FOPID_AW_NONE && (int)fracAW_CLAMP == (int)FRAC_FOPID_AW_CLAMP
+    && (int)fracAW_BACKCALC == (int)FRAC_FOPID_AW_BACKCALC) ? 1 : -1];
+
+static int fopid_load(struct FOPID* inst, frac_fopid *fresh, UDINT bank)
+{
+    const FOPIDParType *p = &inst->Parameters;
+    frac_fopid_params prm;
+    prm.kp = (frac_real)p->Kp;
+    prm.ki = (frac_real)p->Ki;
+    prm.kd = (frac_real)p->Kd;
+    prm.lambda = (frac_real)p->Lambda;
+    prm.mu = (frac_real)p->Mu;
+    prm.tf = (frac_real)p->Tf;
+    prm.b = (frac_real)p->B;
+    prm.c = (frac_real)p->C;
+    prm.delta = (frac_real)p->Delta;
+    prm.umin = (frac_real)p->Y_min;
+    prm.umax = (frac_real)p->Y_max;
+    prm.antiwindup = (int)p->AntiWindup;
+    prm.tt = (frac_real)p->Tt;
+    prm.ts = (frac_real)p->Ts;
+    prm.op.method = (int)p->Method;
+    prm.op.order = FRAC_R(0.0);
+    prm.op.ts = (frac_real)p->Ts;
+    prm.op.memory = (size_t)p->Memory;
+    prm.op.wb = (frac_real)p->Wb;
+    prm.op.wh = (frac_real)p->Wh;
+    prm.op.n = (unsigned)p->N;
+    if (frac_fopid_storage_len(&prm) > (size_t)fracFOPID_STORAGE_LEN) {
+        return FRAC_E_STORAGE;
+    }
+    return frac_fopid_init(fresh, &prm, inst->Storage[bank], (size_t)fracFOPID_STORAGE_LEN);
+}
+
+void FOPID(struct FOPID* inst)
+{
+    int enable_edge, st;
+    frac_real u;
+
+    if (!inst->Enable) {
+        fracctrl_disable(&inst->Fb);
+        fracctrl_report_disabled(&inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
+        inst->Y = 0.0f;
+        inst->Saturated = 0;
+        inst->ResetOld = 0;
+        inst->ManualOld = 0;
+        return;
+    }
+    if (fracctrl_load_edge(&inst->Fb, inst->Enable, inst->Update, &enable_edge)) {
+        frac_fopid fresh;
+        UDINT bank = inst->Fb.ParOk ? 1u - inst->Bank : inst->Bank;
+        st = fopid_load(inst, &fresh, bank);
+        fracctrl_par_result(&inst->Fb, fracctrl_status_id(st), enable_edge);
+        if (st == FRAC_OK) {
+            inst->Pid = fresh;
+            inst->Bank = bank;
+            inst->ManualOld = 0; /* a fresh controller starts in automatic mode */
+        }
+    }
+    if (!inst->Fb.ParOk) {
+        fracctrl_report_no_par(&inst->Fb, &inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
+        inst->Y = 0.0f;
+        inst->Saturated = 0;
+        return;
+    }
+    if (inst->Reset && !inst->ResetOld) {
+        (void)frac_fopid_reset(&inst->Pid);
+    }
+    inst->ResetOld = inst->Reset;
+    if (inst->Manual != inst->ManualOld) {
+        (void)frac_fopid_set_mode(&inst->Pid, inst->Manual ? FRAC_FOPID_MANUAL : FRAC_FOPID_AUTO);
+        inst->ManualOld = inst->Manual;
+    }
+    if (inst->Manual) {
+        (void)frac_fopid_set_manual(&inst->Pid, (frac_real)inst->Y_manual);
+    }
+    st = frac_fopid_step(&inst->Pid, (frac_real)inst->W, (frac_real)inst->X, &u);
+    inst->Y = (REAL)u;
+    inst->Saturated = st == FRAC_W_SATURATED;
+    fracctrl_report(&inst->Fb, st, &inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
+}
