@@ -1,61 +1,44 @@
 /* FoLoop: the seed 001 FO-PI / FO-PD example program (FoLoop.h). */
 #include "FoLoop.h"
-#include "frac/frac_types.h"
 
 #include <string.h>
 
 void foloop_init(void *ctx)
 {
     foloop *f = (foloop *)ctx;
-    const foloop_params *p = f->par;
-    memset(&f->op, 0, sizeof f->op);
+    memset(&f->pid, 0, sizeof f->pid);
     memset(&f->out, 0, sizeof f->out);
-    f->op.Parameters = p->Op;
-    f->op.Enable = 1;
-    FracOp(&f->op);
-    f->fault = f->op.Error;
-    f->out.StatusID = f->op.StatusID;
-    if (!FRAC_ISFINITE(p->Kp) || !FRAC_ISFINITE(p->Kfo) || !FRAC_ISFINITE(p->Delta) || !(p->ULimit > 0.0f)) {
-        f->fault = 1;
-        f->out.StatusID = fracERR_PARAM;
-    }
+    f->pid.Parameters = f->par->Pid;
+    f->pid.Enable = 1;
+    FOPID(&f->pid);
+    f->fault = f->pid.Error;
     f->out.Error = f->fault;
-    /* the evaluation at rest above must not leave history behind */
-    f->op.Reset = 1;
+    f->out.StatusID = f->pid.StatusID;
+    /* the evaluation at rest above must not leave state behind */
+    f->pid.Reset = 1;
 }
 
 void foloop_cyclic(void *ctx)
 {
     foloop *f = (foloop *)ctx;
-    const foloop_params *p = f->par;
-    REAL e, u;
     if (f->fault) {
         f->out.U = 0.0f;
         return;
     }
-    e = f->in.Reference - f->in.Measurement;
-    f->op.X = e;
-    FracOp(&f->op);
-    f->op.Reset = 0;
-    /* (5) or (41): the fractional term from FracOp, the rest is the law's wiring */
-    u = p->Kp * e + p->Kfo * f->op.Y + p->Delta * f->in.Measurement;
-    if (u > p->ULimit) {
-        u = p->ULimit;
-    } else if (u < -p->ULimit) {
-        u = -p->ULimit;
-    }
-    if (!f->op.Error) {
-        f->out.U = u;
-    }
-    f->out.Error = f->op.Error;
-    f->out.StatusID = f->op.StatusID;
+    f->pid.W = f->in.Reference;
+    f->pid.X = f->in.Measurement;
+    FOPID(&f->pid);
+    f->pid.Reset = 0;
+    f->out.U = f->pid.Y; /* holds the last finite value on a bad input */
+    f->out.Error = f->pid.Error;
+    f->out.StatusID = f->pid.StatusID;
 }
 
 void foloop_exit(void *ctx)
 {
     foloop *f = (foloop *)ctx;
-    f->op.Enable = 0;
-    FracOp(&f->op);
+    f->pid.Enable = 0;
+    FOPID(&f->pid);
     f->out.U = 0.0f;
 }
 

@@ -1,24 +1,23 @@
 /*
  * FoLoop.h - example program: the fractional-order outer loop of seed 001
- * (Gharab et al.; notes 001 sections 3-6) on the FracOp block.
+ * (Gharab et al.; notes 001 sections 3-6) on the FOPID block.
  *
  * Plant seen by the loop (notes 001 6.2, (51)): the tip angle theta_d of a
  * single-link flexible arm whose motor angle follows its reference through
  * a fast inner loop, G(s) = K e^{-tau s} / (1 + T s^lambda), with
  * K = 1, T = 1/omega_0^2 = 0.0292866, lambda = 1.92, tau = 0.1613 s,
  * sampled at Ts = 2 ms. The program's output u is the inner-loop reference.
- * Laws, e = r - y:
+ * Laws (FOPID, frac/fopid.h), e = r - y:
  *   FO-PI^alpha  (5):  u = Kp e + Ki s^{-alpha} e          (Delta = 0)
  *   FO-PD^mu    (41):  u = Kp e + Kd s^{mu} e + Delta y    (positive feedback
  *                      Delta = 1/K makes the step error zero, (37)-(39);
  *                      Kp = K_p + delta, C of (41) acts on e)
- * with s^{-alpha} or s^{mu} realized by FracOp (GL, Oustaloup or CFE; the
- * paper uses GL with short memory, notes 001 section 7). (52): Kp = 0.1219,
- * Ki = 0.1255, alpha = 0.88 (designed at omega_c = 6.36 rad/s, erratum E4);
- * (53) reading (c): C = 1 + 0.0256 s^0.88, i.e. Kp = 1, Kd = 0.0256,
- * mu = 0.88, Delta = 1 (notes 6.4, erratum E5).
- * _INIT enables FracOp; a parameter error latches a fault and the output
- * stays 0. Output limited to +-ULimit.
+ * (52): Kp = 0.1219, Ki = 0.1255, alpha = 0.88 (designed at
+ * omega_c = 6.36 rad/s, erratum E4); (53) reading (c): C = 1 + 0.0256 s^0.88,
+ * i.e. Kp = 1, Kd = 0.0256, mu = 0.88, Delta = 1 (notes 6.4, erratum E5).
+ * The paper realizes the operators by GL with short memory (notes 001
+ * section 7). _INIT enables FOPID; a parameter error latches a fault and
+ * the output stays 0.
  */
 #ifndef FOLOOP_H
 #define FOLOOP_H
@@ -31,11 +30,7 @@ extern "C" {
 #endif
 
 typedef struct foloop_params {
-    REAL Kp;          /* proportional gain */
-    REAL Kfo;         /* gain of the fractional term: Ki (PI) or Kd (PD) */
-    REAL Delta;       /* positive feedback of y (PD scheme of Fig. 12), 0 for the PI */
-    REAL ULimit;      /* |u| limit */
-    FracOpParType Op; /* s^{-alpha} (Order < 0) or s^{mu} (Order > 0) */
+    FOPIDParType Pid; /* gains, orders, Delta, limits, realization, Ts */
 } foloop_params;
 
 typedef struct foloop_inputs {
@@ -53,7 +48,7 @@ typedef struct foloop {
     const foloop_params *par;
     foloop_inputs in;
     foloop_outputs out;
-    struct FracOp op;
+    struct FOPID pid;
     BOOL fault;
     plc_io io_in, io_out;
 } foloop;

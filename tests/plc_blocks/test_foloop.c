@@ -1,6 +1,6 @@
 /* FoLoop (seed 001 example program) in the task runtime, lockstep with the
  * delayed fractional process of notes 001 (51) simulated by frac/foprocess.h:
- * the FO-PI (52) and the FO-PD with positive feedback (53, reading (c))
+ * the FO-PI (52) and the FO-PD with positive feedback (53, reading (c)) on FOPID
  * track a unit step as the notes' reference simulations (notes 001 8.3). */
 #include "frac_test.h"
 #include "FoLoop.h"
@@ -94,17 +94,22 @@ static void test_fo_pi_52_settles_a_step_without_error(void **state)
     (void)state;
     rig_init(&r);
     memset(&par, 0, sizeof par);
-    par.Kp = 0.1219f;
-    par.Kfo = 0.1255f;
-    par.ULimit = 10.0f;
-    /* s^-0.88 by Oustaloup over 7 decades: DC gain (1e-4)^-0.88 ~ 3300, so the
-     * step error left by the band edge is below 1e-3 */
-    par.Op.Method = fracFO_OUSTALOUP;
-    par.Op.Order = -0.88;
-    par.Op.Ts = TS;
-    par.Op.Wb = 1e-4;
-    par.Op.Wh = 1e3;
-    par.Op.N = 8;
+    par.Pid.Kp = 0.1219f;
+    par.Pid.Ki = 0.1255f;
+    par.Pid.Lambda = 0.88f;
+    par.Pid.B = 1.0f;
+    par.Pid.C = 1.0f;
+    par.Pid.Y_min = -10.0f;
+    par.Pid.Y_max = 10.0f;
+    par.Pid.Ts = (REAL)TS;
+    /* s^-0.88 = s^-1 s^0.12 (frac/fopid.h) with s^0.12 by Oustaloup over 7
+     * decades: the slow fractional creep of the full-memory reference needs
+     * the low frequencies that a GL short memory (here at most 512 terms,
+     * 1 s) would cut off */
+    par.Pid.Method = fracFO_OUSTALOUP;
+    par.Pid.Wb = 1e-4f;
+    par.Pid.Wh = 1e3f;
+    par.Pid.N = 8;
     run_loop(&r, &par);
     print_message("FO-PI (52): y(40 s after the step) = %.4f, max |y| = %.3f\n", r.y_at_41, r.max_abs_y);
     /* notes 001 8.3 (GL full memory, their step 0.5): y(40 s) = 0.4544 / 0.5
@@ -120,14 +125,17 @@ static void test_fo_pd_53_with_positive_feedback_settles_a_step(void **state)
     (void)state;
     rig_init(&r);
     memset(&par, 0, sizeof par);
-    par.Kp = 1.0f;     /* K_p + delta of (41) with K_p = 0 */
-    par.Kfo = 0.0256f;
-    par.Delta = 1.0f;  /* = 1/K, (37) */
-    par.ULimit = 10.0f;
-    par.Op.Method = fracFO_GL;
-    par.Op.Order = 0.88;
-    par.Op.Ts = TS;
-    par.Op.Memory = 300;
+    par.Pid.Kp = 1.0f;     /* K_p + delta of (41) with K_p = 0 */
+    par.Pid.Kd = 0.0256f;
+    par.Pid.Mu = 0.88f;
+    par.Pid.B = 1.0f;
+    par.Pid.C = 1.0f;
+    par.Pid.Delta = 1.0f;  /* = 1/K, (37) */
+    par.Pid.Y_min = -10.0f;
+    par.Pid.Y_max = 10.0f;
+    par.Pid.Ts = (REAL)TS;
+    par.Pid.Method = fracFO_GL;
+    par.Pid.Memory = 500;
     run_loop(&r, &par);
     print_message("FO-PD (53c): |y - 1| <= %.2e from 15 s on, max |y| = %.3f\n", r.max_err_tail, r.max_abs_y);
     /* notes 001 8.3: overshoot 76.3 %, 2 % settling 5.86 s, final value 1 */
@@ -145,12 +153,12 @@ static void test_fo_loop_bad_parameters_keep_the_output_at_zero(void **state)
     (void)state;
     rig_init(&r);
     memset(&par, 0, sizeof par);
-    par.Kp = 1.0f;
-    par.ULimit = 10.0f;
-    par.Op.Method = fracFO_GL;
-    par.Op.Order = 0.5;
-    par.Op.Ts = 0.0; /* invalid */
-    par.Op.Memory = 10;
+    par.Pid.Kp = 1.0f;
+    par.Pid.Y_min = -1.0f;
+    par.Pid.Y_max = 1.0f;
+    par.Pid.Ts = 0.0f; /* invalid */
+    par.Pid.Method = fracFO_GL;
+    par.Pid.Memory = 10;
     foloop_program(&f, &prog, &par, &r.in_img, &r.out_img);
     foloop_init(&f);
     assert_true(f.out.Error);

@@ -5,6 +5,7 @@
 #include "frac_test.h"
 #include "ArmCtrl.h"
 #include "ImuRead.h"
+#include "FoLoop.h"
 #include "plc_rt.h"
 
 #include <stdlib.h>
@@ -184,12 +185,60 @@ static void test_lut2d_block_runs_without_heap(void **state)
     assert_int_equal(n_alloc, 0);
 }
 
+static void test_fo_loop_and_fracop_run_without_heap(void **state)
+{
+    static foloop f;
+    static struct FracOp op;
+    foloop_params par;
+    plc_program prog;
+    foloop_inputs in;
+    foloop_outputs out;
+    int k;
+    (void)state;
+    memset(&par, 0, sizeof par);
+    par.Pid.Kp = 0.1219f;
+    par.Pid.Ki = 0.1255f;
+    par.Pid.Kd = 0.01f;
+    par.Pid.Lambda = 0.88f;
+    par.Pid.Mu = 0.5f;
+    par.Pid.B = 1.0f;
+    par.Pid.C = 1.0f;
+    par.Pid.Y_min = -1.0f;
+    par.Pid.Y_max = 1.0f;
+    par.Pid.Ts = 0.002f;
+    par.Pid.Method = fracFO_GL;
+    par.Pid.Memory = 200;
+    foloop_program(&f, &prog, &par, &in, &out);
+    foloop_init(&f);
+    memset(&op, 0, sizeof op);
+    op.Parameters.Method = fracFO_CFE_TUSTIN;
+    op.Parameters.Order = 0.5;
+    op.Parameters.Ts = 0.002;
+    op.Parameters.N = 5;
+    op.Enable = 1;
+    FracOp(&op);
+    n_alloc = 0;
+    armed = 1;
+    for (k = 0; k < 2000; k++) {
+        f.in.Reference = 1.0f;
+        f.in.Measurement = 0.001f * (REAL)k;
+        foloop_cyclic(&f);
+        op.X = 0.01f * (REAL)(k % 10);
+        FracOp(&op);
+    }
+    armed = 0;
+    assert_false(f.out.Error);
+    assert_true(op.Valid);
+    assert_int_equal(n_alloc, 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_the_counter_sees_an_allocation),
         cmocka_unit_test(test_every_arm_variant_runs_without_heap_after_init),
         cmocka_unit_test(test_lut2d_block_runs_without_heap),
+        cmocka_unit_test(test_fo_loop_and_fracop_run_without_heap),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
