@@ -97,6 +97,9 @@ static void test_friction_rejects_bad_parameters_and_holds_output_on_nan(void **
     assert_int_equal(frac_friction_init(&f, &p), FRAC_E_PARAM); /* v_s = 0 */
     p.v_s = FRAC_R(0.1);
     assert_int_equal(frac_friction_init(&f, &p), FRAC_E_PARAM); /* delta = 0 */
+    p = zero_params(FRAC_FRICTION_ASYMMETRIC);
+    p.b1p = (frac_real)NAN;
+    assert_int_equal(frac_friction_init(&f, &p), FRAC_E_PARAM);
     p = zero_params(7);
     assert_int_equal(frac_friction_init(&f, &p), FRAC_E_PARAM);
     assert_int_equal(frac_friction_init(NULL, &p), FRAC_E_NULL);

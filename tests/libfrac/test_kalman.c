@@ -250,10 +250,36 @@ static void test_kalman_rejects_bad_input_with_state_untouched(void **state)
     assert_int_equal(frac_kalman_update(&kf, NULL), FRAC_E_NULL);
     x0[1] = (frac_real)NAN;
     assert_int_equal(frac_kalman_reset(&kf, x0), FRAC_E_NONFINITE);
+    /* an estimate that would overflow is rejected, x and P stay */
+    for (i = 0; i < NE; i++) x0[i] = (frac_real)FRAC_REAL_MAX;
+    assert_int_equal(frac_kalman_reset(&kf, x0), FRAC_OK);
+    u = FRAC_R(0.0);
+    assert_int_equal(frac_kalman_predict(&kf, &u), FRAC_E_NUMERIC);
+    assert_close(kf.x[0], FRAC_REAL_MAX, 0.0);
+    for (i = 0; i < NE; i++) x0[i] = -(frac_real)FRAC_REAL_MAX;
+    assert_int_equal(frac_kalman_reset(&kf, x0), FRAC_OK);
+    y[0] = (frac_real)FRAC_REAL_MAX;
+    y[1] = (frac_real)FRAC_REAL_MAX;
+    e_before = kf.P[0];
+    assert_int_equal(frac_kalman_update(&kf, y), FRAC_E_NUMERIC);
+    assert_close(kf.x[0], -FRAC_REAL_MAX, 0.0);
+    assert_close(kf.P[0], e_before, 0.0);
+    y[0] = y[1] = FRAC_R(1.0);
+    bad = prm;
+    {
+        frac_real Qn[NE * NE];
+        for (i = 0; i < NE * NE; i++) Qn[i] = prm.Q[i];
+        Qn[7] = (frac_real)INFINITY;
+        bad.Q = Qn;
+        assert_int_equal(frac_kalman_init(&kf, &bad, st, sizeof st / sizeof st[0]), FRAC_E_NONFINITE);
+    }
 
     for (i = 0; i < NE * PE; i++) L[i] = (frac_real)kdare_L[i];
     pp.n = NE; pp.m = 1; pp.p = PE; pp.A = prm.A; pp.B = prm.B; pp.C = prm.C; pp.L = L; pp.e0 = NULL;
     assert_int_equal(frac_kalman_pred_init(&kp, &pp, sp, 2), FRAC_E_STORAGE);
+    pp.L = NULL;
+    assert_int_equal(frac_kalman_pred_init(&kp, &pp, sp, sizeof sp / sizeof sp[0]), FRAC_E_NULL);
+    pp.L = L;
     L[3] = (frac_real)NAN;
     assert_int_equal(frac_kalman_pred_init(&kp, &pp, sp, sizeof sp / sizeof sp[0]), FRAC_E_NONFINITE);
     L[3] = (frac_real)kdare_L[3];

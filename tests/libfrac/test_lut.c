@@ -149,6 +149,14 @@ static void test_lut_outside_range_clamps_or_extrapolates_with_flag(void **state
     assert_close(x, -0.5, 1e-12);
     assert_int_equal(frac_lut1_eval(&t, FRAC_R(8.5), &y), FRAC_W_EXTRAPOLATED);
     assert_close(y, 12.0 + 0.5 * d[NK - 1], 1e-12);
+    assert_int_equal(frac_lut1_inverse(&t, y, &x), FRAC_W_EXTRAPOLATED);
+    assert_close(x, 8.5, 1e-12);
+    /* two knots: the cubic is the straight line */
+    frac_lut1_init_uniform(&t, FRAC_R(0.0), FRAC_R(2.0), YS, 2, FRAC_LUT_CUBIC, FRAC_LUT_CLAMP, d);
+    assert_close(d[0], 0.5, 1e-15);
+    assert_close(d[1], 0.5, 1e-15);
+    frac_lut1_eval(&t, FRAC_R(0.5), &y);
+    assert_close(y, -1.75, 1e-12);
     frac_lut1_init_uniform(&t, FRAC_R(0.0), FRAC_R(1.0), YS, NK, FRAC_LUT_CUBIC, FRAC_LUT_CLAMP, d);
     assert_int_equal(frac_lut1_eval(&t, FRAC_R(-0.5), &y), FRAC_W_CLAMPED);
     assert_close(y, -2.0, 0.0);
