@@ -3,6 +3,9 @@
 #include <string.h>
 #include <time.h>
 #include "app_common.h"
+#ifdef HIL_HAVE_PLC
+#include "plc_law.h"
+#endif
 
 double app_now(void)
 {
@@ -115,9 +118,10 @@ int app_send_all(struct hil_transport *t, const struct hil_out *out)
 void app_print_stats(FILE *f, const char *name, const struct hil_transport *t,
                      const struct hil_rx_stats *rx)
 {
-    fprintf(f, "HIL_STATS node=%s tx=%llu tx_errors=%llu rx=%llu rx_invalid=%llu", name,
+    fprintf(f, "HIL_STATS node=%s tx=%llu tx_errors=%llu rx=%llu rx_invalid=%llu rx_dropped=%llu", name,
             (unsigned long long)t->tx_frames, (unsigned long long)t->tx_errors,
-            (unsigned long long)t->rx_frames, (unsigned long long)t->rx_invalid);
+            (unsigned long long)t->rx_frames, (unsigned long long)t->rx_invalid,
+            (unsigned long long)t->rx_dropped);
     if (rx)
         fprintf(f, " accepted=%llu other=%llu unknown_id=%llu bad_dlc=%llu bad_value=%llu",
                 (unsigned long long)rx->accepted, (unsigned long long)rx->other,
@@ -153,4 +157,26 @@ int app_run_reactive(struct hil_transport *t, app_handler h, void *node, const s
     }
     app_print_stats(stdout, name, t, rx);
     return failed ? 1 : 0;
+}
+
+void app_setup_law(struct hil_ctrl *c, const struct hil_rig_config *cfg)
+{
+    if (strcmp(cfg->law, "pd") == 0)
+        return;
+#ifdef HIL_HAVE_PLC
+    {
+        static struct hil_plc_law law;
+        char err[256] = "";
+        int st = hil_plc_law_init_exp_a(&law, cfg->ctrl.T, cfg->plant_p.I_M, cfg->plant_p.I_L, cfg->plant_p.c_s,
+                                        err, sizeof err);
+        if (st != HIL_OK) {
+            fprintf(stderr, "ctrl.law = %s: %s %s\n", cfg->law, hil_status_str(st), err);
+            exit(2);
+        }
+        hil_ctrl_set_law(c, hil_plc_law_step, &law);
+    }
+#else
+    fprintf(stderr, "ctrl.law = %s needs plc_blocks, which this build lacks\n", cfg->law);
+    exit(2);
+#endif
 }

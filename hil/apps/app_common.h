@@ -37,6 +37,12 @@ typedef int (*app_handler)(void *node, const struct hil_can_frame *f, struct hil
 int app_run_reactive(struct hil_transport *t, app_handler h, void *node, const struct hil_out *boot,
                      double idle_exit, const char *name, const struct hil_rx_stats *rx);
 
+/* Installs the scenario's controller law (ctrl.law) in c: "pd" keeps the
+ * test law; "armctrl_a" runs plc_blocks' ArmCtrl Exp. A in the task runtime
+ * (hil/plc/plc_law.h) with the scenario's plant.I_M/I_L/c_s as its design
+ * model. Exits 2 when the law cannot be set up (or plc_blocks is not built). */
+void app_setup_law(struct hil_ctrl *c, const struct hil_rig_config *cfg);
+
 void app_print_stats(FILE *f, const char *name, const struct hil_transport *t,
                      const struct hil_rx_stats *rx);
 

@@ -45,6 +45,7 @@ static int run_lockstep(const struct app_opts *o)
         fprintf(stderr, "hil_bench: invalid scenario parameters (%s)\n", hil_status_str(st));
         return 2;
     }
+    app_setup_law(&rig.ctrl, &o->cfg);
     t0 = app_now();
     st = hil_rig_run(&rig);
     wall = app_now() - t0;
@@ -57,11 +58,11 @@ static int run_lockstep(const struct app_opts *o)
         return 1;
     }
     printf("hil_bench: lockstep, %llu cycles (%.3f s simulated) in %.3f s wall (%.1fx real time); "
-           "frames sent %llu, lost %llu, logged %llu; final angle %.4f rad (reference %.4f)\n",
+           "frames sent %llu, lost %llu, logged %llu; final tip angle %.4f rad (reference %.4f)\n",
            (unsigned long long)rig.st.cycles, rig.st.cycles * o->cfg.ctrl.T, wall,
            wall > 0 ? rig.st.cycles * o->cfg.ctrl.T / wall : 0.0, (unsigned long long)rig.st.frames_sent,
            (unsigned long long)rig.st.frames_lost, (unsigned long long)rig.st.frames_logged,
-           rig.plant.theta, rig.ctrl.sig.ref);
+           rig.plant.psi, rig.ctrl.sig.ref);
     return 0;
 }
 
@@ -136,8 +137,9 @@ static int run_processes(const struct app_opts *o, int realtime)
     int i, status, rc = 0;
     unsigned port = 41000u + (unsigned)(getpid() % 1000) * 8u;
     double t0;
-    if (o->cfg.frame_loss > 0.0 || o->cfg.imu_dropout_end > o->cfg.imu_dropout_start) {
-        fprintf(stderr, "hil_bench: frame_loss and imu_dropout are effects of the in-process bus; "
+    if (o->cfg.frame_loss > 0.0 || o->cfg.imu_dropout_end > o->cfg.imu_dropout_start ||
+        o->cfg.drive_dropout_end > o->cfg.drive_dropout_start) {
+        fprintf(stderr, "hil_bench: frame_loss and the dropouts are effects of the in-process bus; "
                         "they are not available with --processes\n");
         return 2;
     }

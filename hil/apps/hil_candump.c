@@ -49,8 +49,8 @@ int main(int argc, char **argv)
         fclose(log);
     else
         fflush(log);
-    fprintf(stderr, "HIL_STATS node=candump logged=%llu rx_invalid=%llu\n", logged,
-            (unsigned long long)t.rx_invalid);
+    fprintf(stderr, "HIL_STATS node=candump logged=%llu rx_invalid=%llu rx_dropped=%llu\n", logged,
+            (unsigned long long)t.rx_invalid, (unsigned long long)t.rx_dropped);
     hil_transport_close(&t);
     return 0;
 }

@@ -109,6 +109,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "hil_ctrl: invalid parameters\n");
         return 2;
     }
+    app_setup_law(&c, &o.cfg);
     T = o.cfg.ctrl.T;
     n = o.cycles > 0 ? o.cycles : (long)(o.cfg.duration / T + 0.5);
     late = calloc((size_t)n, sizeof *late);

@@ -63,16 +63,9 @@ static void send_emcy(struct hil_ctrl *c, uint16_t code, struct hil_out *out)
 
 static double clamp(double x, double m) { return x > m ? m : (x < -m ? -m : x); }
 
-static void run_law(struct hil_ctrl *c, struct hil_out *out)
+/* PD test law with the node's IMU watchdog and fault ramp (hil/ctrl.h). */
+static double pd_law(struct hil_ctrl *c, uint64_t k, int enabled, double ref, double refd, struct hil_out *out)
 {
-    struct hil_drive_rpdo r;
-    struct hil_can_frame f;
-    double t = (double)(c->cycle - 1) * c->p.T, ref, refd, u = 0.0;
-    int64_t q;
-    int enabled = (c->statusword & 0x006Fu) == 0x0027u;
-    uint64_t k = c->cycle - 1;
-
-    hil_ctrl_reference(&c->p, t, &ref, &refd);
     if (enabled && c->imu_seen && k - c->imu_last_cycle > c->p.imu_timeout && !c->fault) {
         c->fault = 1;
         c->faults++;
@@ -82,9 +75,54 @@ static void run_law(struct hil_ctrl *c, struct hil_out *out)
     }
     if (c->fault) {
         double s = (double)(k - c->fault_cycle + 1) * c->p.T / c->p.ramp_time;
-        u = s >= 1.0 ? 0.0 : c->ramp_from * (1.0 - s);
-    } else if (enabled) {
-        u = c->p.kp * (ref - c->theta) + c->p.kd * (refd - c->omega) - c->p.k_tip * c->imu_rate;
+        return s >= 1.0 ? 0.0 : c->ramp_from * (1.0 - s);
+    }
+    if (enabled)
+        return c->p.kp * (ref - c->theta) + c->p.kd * (refd - c->omega) - c->p.k_tip * c->imu_rate;
+    return 0.0;
+}
+
+void hil_ctrl_set_law(struct hil_ctrl *c, hil_ctrl_law law, void *ctx)
+{
+    if (c) {
+        c->law = law;
+        c->law_ctx = ctx;
+    }
+}
+
+static void run_law(struct hil_ctrl *c, struct hil_out *out)
+{
+    struct hil_drive_rpdo r;
+    struct hil_can_frame f;
+    double t = (double)(c->cycle - 1) * c->p.T, ref, refd, u = 0.0;
+    int64_t q;
+    int enabled = (c->statusword & 0x006Fu) == 0x0027u;
+    uint64_t k = c->cycle - 1;
+
+    if (c->law) {
+        struct hil_ctrl_law_in in;
+        int st;
+        in.t = t;
+        in.theta = c->theta;
+        in.omega = c->omega;
+        in.drive_fresh = c->have_tpdo1 && c->have_tpdo2;
+        in.imu_rate = c->imu_rate;
+        in.imu_readings = c->imu_readings;
+        in.enabled = enabled;
+        ref = 0.0;
+        st = c->law(c->law_ctx, &in, &u, &ref);
+        if (st < 0 && !c->fault) {
+            c->faults++;
+            send_emcy(c, HIL_EMCY_SENSOR, out);
+        } else if (st >= 0 && c->fault) {
+            send_emcy(c, HIL_EMCY_NO_ERROR, out);
+        }
+        c->fault = st < 0;
+        if (!isfinite(u))
+            u = 0.0;
+    } else {
+        hil_ctrl_reference(&c->p, t, &ref, &refd);
+        u = pd_law(c, k, enabled, ref, refd, out);
     }
     u = clamp(u, c->p.torque_max);
     r.controlword = k == 0 ? HIL_CW_SHUTDOWN : (k == 1 ? HIL_CW_SWITCH_ON : HIL_CW_ENABLE_OP);
@@ -147,7 +185,7 @@ static void on_imu(struct hil_ctrl *c, const struct hil_imu_tpdo *t, int which, 
             c->imu_seq = t->seq;
             c->imu_last_cycle = c->cycle ? c->cycle - 1 : 0;
             c->imu_readings++;
-            if (c->fault) {
+            if (c->fault && !c->law) {
                 c->fault = 0;
                 send_emcy(c, HIL_EMCY_NO_ERROR, out);
             }

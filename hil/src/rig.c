@@ -24,7 +24,8 @@ struct key { const char *name; int type; size_t off; };
 static const struct key keys[] = {
     D("duration", duration), D("frame_loss", frame_loss), Q("bus_seed", bus_seed),
     U("inject_every", inject_every), D("imu_dropout_start", imu_dropout_start),
-    D("imu_dropout_end", imu_dropout_end),
+    D("imu_dropout_end", imu_dropout_end), D("drive_dropout_start", drive_dropout_start),
+    D("drive_dropout_end", drive_dropout_end),
     U("drive.delay", drive.delay), D("drive.tau_current", drive.tau_current),
     D("drive.torque_rated", drive.torque_rated), D("drive.torque_peak", drive.torque_peak),
     D("drive.thermal_tau", drive.thermal_tau), U("drive.rpdo_timeout", drive.rpdo_timeout),
@@ -54,6 +55,7 @@ void hil_rig_config_default(struct hil_rig_config *c)
     memset(c, 0, sizeof *c);
     strcpy(c->scenario, "default");
     strcpy(c->plant, "rigid");
+    strcpy(c->law, "pd");
     c->duration = 1.0;
     c->bus_seed = 1;
     hil_drive_params_default(&c->drive);
@@ -76,6 +78,12 @@ int hil_rig_config_set(struct hil_rig_config *c, const char *key, const char *va
         else
             return HIL_E_FORMAT;
         strcpy(c->plant, value);
+        return HIL_OK;
+    }
+    if (strcmp(key, "ctrl.law") == 0) {
+        if (strcmp(value, "pd") != 0 && strcmp(value, "armctrl_a") != 0)
+            return HIL_E_FORMAT;
+        strcpy(c->law, value);
         return HIL_OK;
     }
     if (strcmp(key, "T") == 0) {
@@ -186,8 +194,9 @@ static int enqueue(struct hil_rig *r, const struct hil_out *out, int from)
     for (i = 0; i < out->n; i++) {
         int at;
         r->st.frames_sent++;
-        if (from == FROM_IMU && is_pdo(out->f[i].id) && now >= r->cfg.imu_dropout_start &&
-            now < r->cfg.imu_dropout_end) {
+        if (is_pdo(out->f[i].id) &&
+            ((from == FROM_IMU && now >= r->cfg.imu_dropout_start && now < r->cfg.imu_dropout_end) ||
+             (from == FROM_DRIVE && now >= r->cfg.drive_dropout_start && now < r->cfg.drive_dropout_end))) {
             r->st.frames_lost++;
             continue;
         }
@@ -382,7 +391,8 @@ int hil_rig_meta_begin(const struct hil_rig_config *c, const char *mode, FILE *f
     fprintf(f, ",\n  \"plant\": \"%s\",\n", c->plant);
     fprintf(f, "  \"seeds\": {\"bus\": %llu, \"imu\": %llu},\n", (unsigned long long)c->bus_seed,
             (unsigned long long)c->imu.seed);
-    fprintf(f, "  \"parameters\": {\n    \"T\": %.17g,\n    \"plant_name\": \"%s\",\n", c->ctrl.T, c->plant);
+    fprintf(f, "  \"parameters\": {\n    \"T\": %.17g,\n    \"plant_name\": \"%s\",\n    \"ctrl.law\": \"%s\",\n",
+            c->ctrl.T, c->plant, c->law);
     for (i = 0; i < NKEYS; i++) {
         const char *p = (const char *)c + keys[i].off;
         fprintf(f, "    \"%s\": ", keys[i].name);
@@ -401,11 +411,11 @@ int hil_rig_meta_begin(const struct hil_rig_config *c, const char *mode, FILE *f
     fprintf(f, "  },\n  \"effects\": {\"drive_delay_cycles\": %u, \"imu_reading_cycles\": %u, "
                "\"imu_jitter_prob\": %.17g, \"imu_noise\": [%.17g, %.17g], \"imu_bias\": [%.17g, %.17g], "
                "\"imu_quant\": [%.17g, %.17g], \"torque_limits\": [%.17g, %.17g], \"frame_loss\": %.17g, "
-               "\"imu_dropout\": [%.17g, %.17g]},\n",
+               "\"imu_dropout\": [%.17g, %.17g], \"drive_dropout\": [%.17g, %.17g]},\n",
             c->drive.delay, c->imu.reading_cycles, c->imu.jitter_prob, c->imu.gyro_noise,
             c->imu.acc_noise, c->imu.gyro_bias, c->imu.acc_bias, c->imu.gyro_quant, c->imu.acc_quant,
             c->drive.torque_rated, c->drive.torque_peak, c->frame_loss, c->imu_dropout_start,
-            c->imu_dropout_end);
+            c->imu_dropout_end, c->drive_dropout_start, c->drive_dropout_end);
     return HIL_OK;
 }
 
@@ -414,7 +424,7 @@ int hil_rig_config_write(const struct hil_rig_config *c, FILE *f)
     size_t i;
     if (!c || !f)
         return HIL_E_ARG;
-    fprintf(f, "T = %.17g\nplant = %s\n", c->ctrl.T, c->plant);
+    fprintf(f, "T = %.17g\nplant = %s\nctrl.law = %s\n", c->ctrl.T, c->plant, c->law);
     for (i = 0; i < NKEYS; i++) {
         const char *p = (const char *)c + keys[i].off;
         fprintf(f, "%s = ", keys[i].name);

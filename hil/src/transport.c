@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/socket.h>
+#include <sys/uio.h>
 #include <time.h>
 #include <unistd.h>
 #include "hil/transport.h"
@@ -31,6 +32,16 @@ static int parse_uint(const char *s, char **end, unsigned long max, unsigned lon
         return HIL_E_ARG;
     *out = v;
     return HIL_OK;
+}
+
+/* Larger receive queue and the kernel's drop counter; both best effort (a
+ * kernel without them still carries frames). */
+static void tune_rx(int fd)
+{
+    int size = HIL_RX_BUFFER, on = 1;
+    if (setsockopt(fd, SOL_SOCKET, SO_RCVBUFFORCE, &size, sizeof size) != 0)
+        (void)setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &size, sizeof size);
+    (void)setsockopt(fd, SOL_SOCKET, SO_RXQ_OVFL, &on, sizeof on);
 }
 
 static int open_socketcan(struct hil_transport *t, const char *ifname)
@@ -55,6 +66,7 @@ static int open_socketcan(struct hil_transport *t, const char *ifname)
         close(fd);
         return HIL_E_IO;
     }
+    tune_rx(fd);
     t->kind = HIL_TRANSPORT_SOCKETCAN;
     t->fd = fd;
     strcpy(t->name, ifname);
@@ -89,6 +101,7 @@ static int open_udp(struct hil_transport *t, const char *spec)
         close(fd);
         return HIL_E_IO;
     }
+    tune_rx(fd);
     t->kind = HIL_TRANSPORT_UDP;
     t->fd = fd;
     t->udp_port_base = (uint16_t)port;
@@ -212,36 +225,63 @@ int hil_transport_recv(struct hil_transport *t, struct hil_can_frame *f, long ti
     st = wait_readable(t->fd, timeout_us);
     if (st != HIL_OK)
         return st;
-    if (t->kind == HIL_TRANSPORT_SOCKETCAN) {
+    {
         struct can_frame lf;
-        n = read(t->fd, &lf, sizeof lf);
-        if (n < 0)
-            return (errno == EAGAIN || errno == EINTR) ? HIL_E_TIMEOUT : HIL_E_IO;
-        if (n != (ssize_t)sizeof lf || lf.len > CAN_MAX_DLEN) {
-            t->rx_invalid++;
-            return HIL_E_FORMAT;
-        }
-        f->id = lf.can_id;
-        f->dlc = lf.len;
-        memset(f->data, 0, sizeof f->data);
-        memcpy(f->data, lf.data, lf.len);
-    } else {
         struct sockaddr_in src;
-        socklen_t sl = sizeof src;
-        n = recvfrom(t->fd, d, sizeof d, 0, (struct sockaddr *)&src, &sl);
+        struct iovec iov;
+        struct msghdr msg;
+        struct cmsghdr *cm;
+        union {
+            char buf[CMSG_SPACE(sizeof(uint32_t))];
+            struct cmsghdr align;
+        } ctl;
+        memset(&msg, 0, sizeof msg);
+        memset(&src, 0, sizeof src);
+        if (t->kind == HIL_TRANSPORT_SOCKETCAN) {
+            iov.iov_base = &lf;
+            iov.iov_len = sizeof lf;
+        } else {
+            iov.iov_base = d;
+            iov.iov_len = sizeof d;
+            msg.msg_name = &src;
+            msg.msg_namelen = sizeof src;
+        }
+        msg.msg_iov = &iov;
+        msg.msg_iovlen = 1;
+        msg.msg_control = ctl.buf;
+        msg.msg_controllen = sizeof ctl.buf;
+        n = recvmsg(t->fd, &msg, 0);
         if (n < 0)
             return (errno == EAGAIN || errno == EINTR) ? HIL_E_TIMEOUT : HIL_E_IO;
-        /* Only datagrams of exactly one frame from the loopback net, with
-         * zero padding, are frames of this bus. */
-        if (n != HIL_UDP_DATAGRAM || sl != sizeof src || src.sin_family != AF_INET ||
-            (ntohl(src.sin_addr.s_addr) >> 24) != 127 || d[5] || d[6] || d[7] || d[4] > 8) {
-            t->rx_invalid++;
-            return HIL_E_FORMAT;
+        for (cm = CMSG_FIRSTHDR(&msg); cm; cm = CMSG_NXTHDR(&msg, cm)) {
+            if (cm->cmsg_level == SOL_SOCKET && cm->cmsg_type == SO_RXQ_OVFL) {
+                uint32_t drops;
+                memcpy(&drops, CMSG_DATA(cm), sizeof drops);
+                t->rx_dropped = drops; /* the kernel's cumulative count */
+            }
         }
-        f->id = hil_get_u32(d);
-        f->dlc = d[4];
-        memset(f->data, 0, sizeof f->data);
-        memcpy(f->data, d + 8, f->dlc);
+        if (t->kind == HIL_TRANSPORT_SOCKETCAN) {
+            if (n != (ssize_t)sizeof lf || lf.len > CAN_MAX_DLEN) {
+                t->rx_invalid++;
+                return HIL_E_FORMAT;
+            }
+            f->id = lf.can_id;
+            f->dlc = lf.len;
+            memset(f->data, 0, sizeof f->data);
+            memcpy(f->data, lf.data, lf.len);
+        } else {
+            /* Only datagrams of exactly one frame from the loopback net, with
+             * zero padding, are frames of this bus. */
+            if (n != HIL_UDP_DATAGRAM || msg.msg_namelen != sizeof src || src.sin_family != AF_INET ||
+                (ntohl(src.sin_addr.s_addr) >> 24) != 127 || d[5] || d[6] || d[7] || d[4] > 8) {
+                t->rx_invalid++;
+                return HIL_E_FORMAT;
+            }
+            f->id = hil_get_u32(d);
+            f->dlc = d[4];
+            memset(f->data, 0, sizeof f->data);
+            memcpy(f->data, d + 8, f->dlc);
+        }
     }
     st = hil_can_frame_check(f);
     if (st != HIL_OK) {

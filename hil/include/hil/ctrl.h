@@ -33,6 +33,23 @@ struct hil_ctrl_params {
     double torque_max;    /* command clamp [Nm] > 0 */
 };
 
+/* An external control law in place of the PD test law (e.g. the plc_blocks
+ * ArmCtrl program, hil/plc_law.h). Called once per cycle with what the node
+ * decoded from the bus; returns the torque command in *torque and the
+ * reference in *ref (for the logs), and a negative value when the law is in
+ * its fault reaction (the node then sends EMCY 0x7300 once per episode).
+ * With an external law the node's own IMU watchdog is off: the law has its
+ * own fault reaction. */
+struct hil_ctrl_law_in {
+    double t;                 /* cycle time k T [s] */
+    double theta, omega;      /* drive TPDO1/TPDO2 */
+    int drive_fresh;          /* both drive TPDOs of this cycle arrived */
+    double imu_rate;          /* latest IMU rate z [rad/s] */
+    uint64_t imu_readings;    /* readings received so far */
+    int enabled;              /* the drive reports "operation enabled" */
+};
+typedef int (*hil_ctrl_law)(void *ctx, const struct hil_ctrl_law_in *in, double *torque, double *ref);
+
 struct hil_ctrl_signals {   /* what the controller saw and did in one cycle */
     double t, ref, torque_cmd, theta, omega, imu_rate;
     uint16_t statusword;
@@ -57,6 +74,8 @@ struct hil_ctrl {
     struct hil_ctrl_signals sig;
     uint64_t missed_inputs, emcy_sent, emcy_received, faults;
     uint8_t hb_state[128];    /* last heartbeat state per node, 0xFF = none */
+    hil_ctrl_law law;         /* NULL: the PD test law */
+    void *law_ctx;
 };
 
 /* Test-law defaults for the rigid test plant: kp 400, kd 60, k_tip 0,
@@ -64,6 +83,8 @@ struct hil_ctrl {
  * torque_max 251 Nm, T 1.2 ms. */
 void hil_ctrl_params_default(struct hil_ctrl_params *p);
 int hil_ctrl_init(struct hil_ctrl *c, const struct hil_ctrl_params *p);
+/* Replaces the PD test law by `law` (NULL restores it). */
+void hil_ctrl_set_law(struct hil_ctrl *c, hil_ctrl_law law, void *ctx);
 /* Starts cycle k = c->cycle: NMT at k = 0, SYNC(k). */
 int hil_ctrl_tick(struct hil_ctrl *c, struct hil_out *out);
 /* Consumes one bus frame; same contract as hil_drive_on_frame. */

@@ -16,7 +16,8 @@
  * inject_every > 0 puts two malformed frames on the bus every inject_every
  * cycles (the drive RPDO with DLC 5 and the unknown identifier 0x555), which
  * every node must count and ignore. imu_dropout_start/end: every IMU PDO
- * sent in that window of simulated time is lost (the "IMU frames stop" fault). */
+ * sent in that window of simulated time is lost (the "IMU frames stop" fault);
+ * drive_dropout_start/end the same for the drive's TPDOs. */
 #ifndef HIL_RIG_H
 #define HIL_RIG_H
 #include <stdio.h>
@@ -30,12 +31,14 @@
 
 struct hil_rig_config {
     char scenario[128];        /* scenario name or file, for the metadata */
-    char plant[16];            /* "rigid" */
+    char plant[16];            /* "rigid" or "twomass" */
+    char law[16];              /* controller law: "pd" (test law) or "armctrl_a" (plc_blocks) */
     double duration;           /* simulated seconds > 0 */
     double frame_loss;         /* [0, 1) */
     uint64_t bus_seed;
     unsigned inject_every;     /* 0: off */
     double imu_dropout_start, imu_dropout_end; /* IMU PDOs lost in [start, end) [s] */
+    double drive_dropout_start, drive_dropout_end; /* drive TPDOs lost in [start, end) [s] */
     struct hil_drive_params drive;
     struct hil_imu_params imu;
     struct hil_plant_params plant_p;
@@ -68,7 +71,8 @@ void hil_rig_config_default(struct hil_rig_config *c);
 
 /* Reads "key = value" lines ('#' comments) into c, on top of what it holds.
  * Keys: T (sets the cycle of every node), duration, plant, frame_loss,
- * bus_seed, inject_every, imu_dropout_start, imu_dropout_end, and the fields
+ * bus_seed, inject_every, imu_dropout_start, imu_dropout_end, drive_dropout_start,
+ * drive_dropout_end, ctrl.law, and the fields
  * of the node parameter structs as drive.*, imu.*, plant.*, ctrl.*. Returns HIL_OK, HIL_E_IO, or HIL_E_FORMAT with *line_no set to
  * the first bad line (unknown key, bad number). */
 int hil_rig_config_load(struct hil_rig_config *c, const char *path, int *line_no);

@@ -12,7 +12,10 @@
  * Every received frame is validated (hil_can_frame_check, datagram size,
  * loopback source) before it is returned; invalid ones are counted in
  * rx_invalid and reported as HIL_E_FORMAT, the transport stays usable.
- * The caller owns the struct; no allocation. */
+ * Receive queues are enlarged to HIL_RX_BUFFER bytes (SO_RCVBUFFORCE when
+ * permitted, else SO_RCVBUF up to the system limit) so a logger that is
+ * scheduled out does not lose frames; what the kernel still drops is counted
+ * in rx_dropped (SO_RXQ_OVFL). The caller owns the struct; no allocation. */
 #ifndef HIL_TRANSPORT_H
 #define HIL_TRANSPORT_H
 #include <stdint.h>
@@ -20,6 +23,7 @@
 
 #define HIL_UDP_MAX_NODES 16
 #define HIL_UDP_DATAGRAM 16
+#define HIL_RX_BUFFER (8 * 1024 * 1024)
 
 enum hil_transport_kind { HIL_TRANSPORT_SOCKETCAN = 1, HIL_TRANSPORT_UDP = 2 };
 
@@ -30,6 +34,7 @@ struct hil_transport {
     uint16_t udp_port_base; /* udp only */
     uint8_t udp_slot, udp_nodes;
     uint64_t tx_frames, rx_frames, rx_invalid, tx_errors;
+    uint64_t rx_dropped; /* frames the kernel dropped on a full receive queue (SO_RXQ_OVFL) */
 };
 
 /* Opens the transport described by spec (see above).

@@ -1,0 +1,117 @@
+/* ArmCtrl + ImuRead in the plc_rt task runtime as the controller node's law
+ * (hil/plc/plc_law.h). */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include "hil/can.h"
+#include "plc_law.h"
+
+/* Table 2.3 task classes with the programs of Fig. 2.12; simulated CPU time
+ * per cycle: ArmCtrl 300 us, ImuRead 50 us. */
+static const char table_2_3[] =
+    "[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\nviolation_reaction = continue\n"
+    "[cyclic1]\nduration_us = 1200\nsim_cost_us = 300\nprograms = ArmCtrl\n"
+    "[cyclic2]\nduration_us = 600\nsim_cost_us = 50\nprograms = ImuRead\n";
+
+int hil_plc_law_init_exp_a(struct hil_plc_law *L, double T, double I_M, double I_L, double c_s, char *err,
+                           size_t errlen)
+{
+    frac_traj_params tp;
+    plc_rt_config cfg;
+    const plc_program *reg[2];
+    int i, ch;
+    if (!L || fabs(T - 1.2e-3) > 1e-12 || !(I_M > 0.0) || !(I_L > 0.0) || !(c_s > 0.0) || !isfinite(I_M) ||
+        !isfinite(I_L) || !isfinite(c_s))
+        return HIL_E_ARG;
+    memset(L, 0, sizeof *L);
+    /* Table 8.5 point-to-point move */
+    tp.q_s = 0.0;
+    tp.q_e = FRAC_PI / 2;
+    tp.dq_max = FRAC_PI / 2;
+    tp.ddq_max = 2 * FRAC_PI;
+    tp.t_start = 0.5;
+    tp.duration = 1.5;
+    if (frac_traj_init(&L->traj, &tp) != FRAC_OK)
+        return HIL_E_ARG;
+    /* rbFFC (4.14)-(4.17): link at the trajectory, motor ahead by the spring
+     * twist I_L q'' / c_s, torque I_M theta_M'' + c_s (theta_M - q). */
+    for (i = 0; i < HIL_PLC_FF_SAMPLES; i++) {
+        frac_real d[5], th, ddth;
+        frac_traj_eval(&L->traj, (frac_real)(i * T), d);
+        th = (frac_real)(I_L / c_s) * d[2] + d[0];
+        ddth = (frac_real)(I_L / c_s) * d[4] + d[2];
+        L->ff[ARMCTRL_FF_THETA][i] = th;
+        L->ff[ARMCTRL_FF_DTHETA][i] = (frac_real)(I_L / c_s) * d[3] + d[1];
+        L->ff[ARMCTRL_FF_DPSI][i] = d[1];
+        L->ff[ARMCTRL_FF_TAU][i] = (frac_real)I_M * ddth + (frac_real)c_s * (th - d[0]);
+    }
+    L->par.Variant = ARMCTRL_EXP_A;
+    L->par.CycleTime = (REAL)T;
+    L->par.Ff.Channels = ARMCTRL_FF_N;
+    L->par.Ff.N = HIL_PLC_FF_SAMPLES;
+    for (ch = 0; ch < ARMCTRL_FF_N; ch++)
+        L->par.Ff.pData[ch] = L->ff[ch];
+    L->par.Ff.T0 = 0.0;
+    L->par.Ff.Dt = (REAL)T;
+    L->par.Ff.Ts = (REAL)T;
+    L->par.Ff.TMotionStart = 0.5f;
+    L->par.Ff.TMotionEnd = 2.0f;
+    L->par.Ff.Interpolation = fracINTERP_LINEAR;
+    L->par.Kp = 320.0f;
+    L->par.Kd = 200.0f;
+    L->par.Friction.Model = fracFRICTION_LINEAR;
+    L->par.Friction.K = 60.0f;
+    L->par.Friction.B1 = 3.04f;
+    L->par.Friction.B0 = 7.684f;
+    L->par.WdDrive.MaxStaleCycles = 2;
+    L->par.WdDrive.RampRate = 25000.0f;
+    L->par.WdDrive.CycleTime = (REAL)T;
+    L->par.WdImu = L->par.WdDrive;
+    L->par.WdImu.MaxStaleCycles = 3;
+    L->par.TorqueLimit = 250.0f;
+    armctrl_program(&L->a, &L->pa, &L->par, &L->drive_img, &L->imu_img, &L->ctrl_img);
+    imuread_program(&L->m, &L->pm, 1.0f, &L->can_img, &L->imu_img);
+    reg[0] = &L->pa;
+    reg[1] = &L->pm;
+    if (plc_rt_config_parse(&cfg, table_2_3, "table_2_3", err, errlen) != PLC_RT_OK ||
+        plc_rt_init(&L->rt, &cfg, reg, 2, err, errlen) != PLC_RT_OK || plc_rt_start(&L->rt) != PLC_RT_OK)
+        return HIL_E_STATE;
+    L->started = 1;
+    if (L->a.fault) {
+        if (err && errlen)
+            snprintf(err, errlen, "ArmCtrl _INIT refused its parameters (StatusID %u)",
+                     (unsigned)L->a.out.StatusID);
+        return HIL_E_STATE;
+    }
+    return HIL_OK;
+}
+
+int hil_plc_law_step(void *ctx, const struct hil_ctrl_law_in *in, double *torque, double *ref)
+{
+    struct hil_plc_law *L = (struct hil_plc_law *)ctx;
+    frac_real d[5];
+    if (!L || !in || !torque || !ref || !L->started)
+        return HIL_E_ARG;
+    L->drive_img.MotorAngle = (REAL)in->theta;
+    L->drive_img.MotorVelocity = (REAL)in->omega;
+    if (in->drive_fresh)
+        L->drive_img.DriveCounter++;
+    L->drive_img.Start = in->enabled || L->drive_img.Start;
+    L->can_img.RawRate = (REAL)in->imu_rate;
+    L->can_img.FrameCounter = (UDINT)in->imu_readings;
+    plc_rt_run_sim(&L->rt, 12);
+    *torque = L->ctrl_img.TorqueEnable ? (double)L->ctrl_img.TorqueSetpoint : 0.0;
+    frac_traj_eval(&L->traj, (frac_real)(L->ctrl_img.Counter * (double)L->par.CycleTime), d);
+    *ref = (double)d[0];
+    if (L->ctrl_img.Error)
+        return -1;
+    return HIL_OK;
+}
+
+void hil_plc_law_stop(struct hil_plc_law *L)
+{
+    if (L && L->started) {
+        plc_rt_stop(&L->rt);
+        L->started = 0;
+    }
+}

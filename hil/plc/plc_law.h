@@ -1,0 +1,61 @@
+/* The controller node's law from plc_blocks: the ArmCtrl program (Cyclic #1,
+ * 1.2 ms) and ImuRead (Cyclic #2, 0.6 ms) run by the plc_rt task runtime with
+ * the Table 2.3 task classes, on a simulated clock that advances 12 system
+ * ticks (1.2 ms) per controller cycle of the bus.
+ *
+ * Per cycle (hil_ctrl_law contract, hil/ctrl.h): the values the node decoded
+ * from the bus go into the I/O images (drive: angle, velocity and a counter
+ * advanced only when both drive TPDOs arrived; CAN: the IMU rate and a frame
+ * counter advanced per reading received), the runtime runs 12 ticks (Cyclic
+ * #1 latches the image at its release, publishes after its simulated CPU time
+ * of 300 us; Cyclic #2 runs twice), and the published TorqueSetpoint is the
+ * command (0 while TorqueEnable is FALSE). Start goes TRUE at the first cycle
+ * the drive reports "operation enabled".
+ *
+ * Variant Exp. A (Table 8.1): rbFFC feedforward (4.14)-(4.17) of the Table
+ * 8.5 point-to-point move (frac/traj.h: 0 -> pi/2, dq_max pi/2, ddq_max 2 pi,
+ * motion 0.5 .. 2.0 s after Start) on the drive + rigid link + gear spring
+ * design model (I_M, I_L, c_s given), PD gains Kp 320 Nm/rad, Kd 200 Nm s/rad
+ * and linear friction compensation b1 3.04, b0 7.684, k 60 (Table 8.6).
+ * Drive watchdog: 2 stale cycles; its fault ramp 25000 Nm/s takes the 250 Nm
+ * limit to 0 in 10 ms. The law reports a fault (negative return) while the
+ * program's published Error is set (a block or a watchdog in fault). */
+#ifndef HIL_PLC_LAW_H
+#define HIL_PLC_LAW_H
+#include "ArmCtrl.h"
+#include "ImuRead.h"
+#include "frac/traj.h"
+#include "hil/ctrl.h"
+#include "plc_rt.h"
+
+#define HIL_PLC_FF_SAMPLES 2668 /* 0 .. 3.2 s at 1.2 ms */
+
+struct hil_plc_law {
+    armctrl a;
+    imuread m;
+    plc_program pa, pm;
+    plc_rt rt;
+    armctrl_params par;
+    armctrl_inputs drive_img;
+    armctrl_outputs ctrl_img;
+    imuread_inputs can_img;
+    imuread_outputs imu_img;
+    frac_traj traj;
+    frac_real ff[ARMCTRL_FF_N][HIL_PLC_FF_SAMPLES];
+    int started;
+};
+
+/* Builds Exp. A for cycle T = 1.2 ms on the design model (I_M, I_L, c_s),
+ * starts the runtime (_INIT). Returns HIL_OK, HIL_E_ARG (T not 1.2 ms, a
+ * model value not positive) or HIL_E_STATE (the runtime or a block refused
+ * its configuration; message in err). */
+int hil_plc_law_init_exp_a(struct hil_plc_law *L, double T, double I_M, double I_L, double c_s, char *err,
+                           size_t errlen);
+
+/* The hil_ctrl_law callback; ctx is the struct hil_plc_law. */
+int hil_plc_law_step(void *ctx, const struct hil_ctrl_law_in *in, double *torque, double *ref);
+
+/* Runs the _EXIT programs. */
+void hil_plc_law_stop(struct hil_plc_law *L);
+
+#endif
