@@ -215,3 +215,28 @@ FUNCTION_BLOCK FOPID (*Fractional PI^lambda D^mu controller with derivative filt
 		Storage : ARRAY[0..1, 0..fracFOPID_STORAGE_LEN] OF FracReal; (*Two banks: a new set is built in the other one*)
 	END_VAR
 END_FUNCTION_BLOCK
+
+FUNCTION_BLOCK FracDamp (*Collocated fractional damping law with prefilter, seed 002: Y = F(s) W - C(s) X (frac/fodamp.h)*)
+	VAR_INPUT
+		Enable : BOOL;
+		Parameters : FracDampParType;
+		Update : BOOL; (*Rising edge: take over Parameters (state restarts at 0)*)
+		Reset : BOOL; (*Rising edge: zero state*)
+		W : REAL; (*Reference: tip angle theta_2^* [rad]*)
+		X : REAL; (*Collocated measurement: base moment Gamma_c [Nm]*)
+	END_VAR
+	VAR_OUTPUT
+		Valid : BOOL;
+		Busy : BOOL;
+		Error : BOOL;
+		StatusID : UINT; (*fracSTAT_OK, fracERR_NONFINITE (Y holds), 51005 M > 2, 51006 order, 51009 gain, 51014 D not Hurwitz, 51008 sample time, 51004 storage*)
+		Y : REAL; (*Motor reference theta_m* [rad]*)
+	END_VAR
+	VAR
+		Fb : FracFbStateType;
+		ResetOld : BOOL;
+		Bank : UDINT; (*Object and storage bank in effect*)
+		Damp : ARRAY[0..1] OF FracFodampObj; (*Two objects: frac_fodamp refers to its own coefficients, so a new set is built in place in the other one*)
+		Storage : ARRAY[0..1, 0..fracFODAMP_STORAGE_LEN] OF FracReal;
+	END_VAR
+END_FUNCTION_BLOCK

@@ -1,0 +1,79 @@
+/*
+ * FracDamp - collocated fractional damping law with prefilter of seed 002
+ * (FracCtrl.fun) on frac_fodamp (frac/fodamp.h):
+ *   Y = F(s) W - C(s) X   (W tip reference, X base moment),
+ *   C(s) = Kc s^Alpha N(s) / (s^M D(s)), F(s) = (1 + Fa s^Fbeta) / (1 + Fb s)
+ * (seed 002 (23), (47)-(52): C = 5.31 (1 + 0.0142 s) / s^1.2,
+ * F = (1 + 0.116 s^0.55) / (1 + 0.011 s)). The body maps the pins onto
+ * frac_fodamp_init / _step / _reset. frac_fodamp points into its own
+ * coefficient arrays, so it cannot be copied: a new parameter set is
+ * initialised in place in the object and storage bank not in use and
+ * becomes the one in effect only if valid (starting from zero state).
+ * Cost per call: one frac_fodamp_step (two fractional operators, at most
+ * two biquads, the prefilter lag).
+ */
+#include "FracCtrl.h"
+#include "fracctrl_status.h"
+#include "frac/fodamp.h"
+
+static int fracdamp_load(struct FracDamp* inst, UDINT bank)
+{
+    const FracDampParType *p = &inst->Parameters;
+    frac_fodamp_params prm;
+    prm.kc = (frac_real)p->Kc;
+    prm.alpha = (frac_real)p->Alpha;
+    prm.m = (unsigned)p->M;
+    prm.n1 = (frac_real)p->N1;
+    prm.n2 = (frac_real)p->N2;
+    prm.d1 = (frac_real)p->D1;
+    prm.d2 = (frac_real)p->D2;
+    prm.fa = (frac_real)p->Fa;
+    prm.fbeta = (frac_real)p->Fbeta;
+    prm.fb = (frac_real)p->Fb;
+    prm.ts = (frac_real)p->Ts;
+    prm.op.method = (int)p->Method;
+    prm.op.order = FRAC_R(0.0);
+    prm.op.ts = (frac_real)p->Ts;
+    prm.op.memory = (size_t)p->Memory;
+    prm.op.wb = (frac_real)p->Wb;
+    prm.op.wh = (frac_real)p->Wh;
+    prm.op.n = (unsigned)p->N;
+    if (frac_fodamp_storage_len(&prm) > (size_t)fracFODAMP_STORAGE_LEN) {
+        return FRAC_E_STORAGE;
+    }
+    return frac_fodamp_init(&inst->Damp[bank], &prm, inst->Storage[bank], (size_t)fracFODAMP_STORAGE_LEN);
+}
+
+void FracDamp(struct FracDamp* inst)
+{
+    int enable_edge, st;
+    frac_real y;
+
+    if (!inst->Enable) {
+        fracctrl_disable(&inst->Fb);
+        fracctrl_report_disabled(&inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
+        inst->Y = 0.0f;
+        inst->ResetOld = 0;
+        return;
+    }
+    if (fracctrl_load_edge(&inst->Fb, inst->Enable, inst->Update, &enable_edge)) {
+        UDINT bank = inst->Fb.ParOk ? 1u - inst->Bank : inst->Bank;
+        st = fracdamp_load(inst, bank);
+        fracctrl_par_result(&inst->Fb, fracctrl_status_id(st), enable_edge);
+        if (st == FRAC_OK) {
+            inst->Bank = bank;
+        }
+    }
+    if (!inst->Fb.ParOk) {
+        fracctrl_report_no_par(&inst->Fb, &inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
+        inst->Y = 0.0f;
+        return;
+    }
+    if (inst->Reset && !inst->ResetOld) {
+        (void)frac_fodamp_reset(&inst->Damp[inst->Bank]);
+    }
+    inst->ResetOld = inst->Reset;
+    st = frac_fodamp_step(&inst->Damp[inst->Bank], (frac_real)inst->W, (frac_real)inst->X, &y);
+    inst->Y = (REAL)y;
+    fracctrl_report(&inst->Fb, st, &inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
+}
