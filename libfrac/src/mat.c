@@ -10,17 +10,55 @@
 #define DIM_OK(d) ((d) > 0 && (d) <= FRAC_MAT_MAX)
 
 /*
- * y = M x (acc = 0) or y += M x (acc = 1) for row-major M, one row at a
- * time with four partial sums. Each partial sum keeps its own summation
- * order (strict IEEE code may not reassociate), the loop overhead is paid
- * once per four terms, and neighbouring partial sums are what a compiler
- * packs into SIMD lanes (SSE2, NEON). This is the inner loop of the
- * Kalman predictor and LQG steps.
+ * y = M x (acc = 0) or y += M x (acc = 1) for row-major M.
+ * Four rows at a time with two partial sums per row (even and odd
+ * columns): the four rows share every load of x, and the even/odd sums of
+ * a row are the two lanes a compiler packs into one SIMD register (SSE2,
+ * NEON). Each partial sum keeps its own summation order, since strict
+ * IEEE code may not reassociate. Remaining rows: four partial sums each.
+ * This is the inner loop of the Kalman predictor and LQG steps.
  */
 static void gemv_kernel(const frac_real *M, size_t r, size_t c, const frac_real *x, frac_real *y, int acc)
 {
-    size_t i, j;
-    for (i = 0; i < r; i++) {
+    size_t i = 0, j;
+    for (; i + 4 <= r; i += 4) {
+        const frac_real *a = M + i * c, *b = a + c, *d = b + c, *f = d + c;
+        frac_real a0 = FRAC_R(0.0), a1 = FRAC_R(0.0), b0 = FRAC_R(0.0), b1 = FRAC_R(0.0);
+        frac_real d0 = FRAC_R(0.0), d1 = FRAC_R(0.0), f0 = FRAC_R(0.0), f1 = FRAC_R(0.0);
+        for (j = 0; j + 2 <= c; j += 2) {
+            const frac_real x0 = x[j], x1 = x[j + 1];
+            a0 += a[j] * x0;
+            a1 += a[j + 1] * x1;
+            b0 += b[j] * x0;
+            b1 += b[j + 1] * x1;
+            d0 += d[j] * x0;
+            d1 += d[j + 1] * x1;
+            f0 += f[j] * x0;
+            f1 += f[j + 1] * x1;
+        }
+        if (j < c) {
+            a0 += a[j] * x[j];
+            b0 += b[j] * x[j];
+            d0 += d[j] * x[j];
+            f0 += f[j] * x[j];
+        }
+        a0 += a1;
+        b0 += b1;
+        d0 += d1;
+        f0 += f1;
+        if (acc) {
+            y[i] += a0;
+            y[i + 1] += b0;
+            y[i + 2] += d0;
+            y[i + 3] += f0;
+        } else {
+            y[i] = a0;
+            y[i + 1] = b0;
+            y[i + 2] = d0;
+            y[i + 3] = f0;
+        }
+    }
+    for (; i < r; i++) {
         const frac_real *a = M + i * c;
         frac_real s0 = FRAC_R(0.0), s1 = FRAC_R(0.0), s2 = FRAC_R(0.0), s3 = FRAC_R(0.0);
         for (j = 0; j + 4 <= c; j += 4) {

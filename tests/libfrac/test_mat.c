@@ -30,6 +30,29 @@ static void test_mat_products_match_hand_computed_values(void **state)
     assert_close(Ct[3], 77, 0.0);
 }
 
+/* every row/column remainder of the blocked kernel against a plain loop */
+static void test_mat_vec_matches_plain_loop_for_all_shapes(void **state)
+{
+    frac_real M[11 * 11], x[11], y[11], ya[11];
+    size_t r, c, i, j;
+    (void)state;
+    for (i = 0; i < 11 * 11; i++) M[i] = (frac_real)(0.37 * (double)i - 0.011 * (double)(i * i % 17));
+    for (j = 0; j < 11; j++) x[j] = (frac_real)(1.0 - 0.3 * (double)j);
+    for (r = 1; r <= 11; r++) {
+        for (c = 1; c <= 11; c++) {
+            for (i = 0; i < r; i++) ya[i] = (frac_real)i;
+            assert_int_equal(frac_mat_vec(M, r, c, x, y), FRAC_OK);
+            assert_int_equal(frac_mat_vec_add(M, r, c, x, ya), FRAC_OK);
+            for (i = 0; i < r; i++) {
+                double s = 0.0;
+                for (j = 0; j < c; j++) s += (double)M[i * c + j] * (double)x[j];
+                assert_close(y[i], s, 1e-9 * (1.0 + fabs(s)));
+                assert_close(ya[i], s + (double)i, 1e-9 * (1.0 + fabs(s) + (double)i));
+            }
+        }
+    }
+}
+
 static void test_mat_congruence_equals_product_and_is_exactly_symmetric(void **state)
 {
     frac_real work[6], P[4], AP[6], APA[4];
@@ -112,6 +135,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mat_products_match_hand_computed_values),
+        cmocka_unit_test(test_mat_vec_matches_plain_loop_for_all_shapes),
         cmocka_unit_test(test_mat_congruence_equals_product_and_is_exactly_symmetric),
         cmocka_unit_test(test_mat_cholesky_solves_spd_system),
         cmocka_unit_test(test_mat_cholesky_rejects_indefinite_and_nan),
