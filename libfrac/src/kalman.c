@@ -227,30 +227,23 @@ int frac_kalman_pred_step(frac_kalman_pred *kp, const frac_real *u, const frac_r
     t = kp->tmp;
     nu = kp->nu;
     /* innovation y - C e; a skipped output contributes nothing */
+    frac_mat_vec(m->C, p, n, e, nu);
     for (j = 0; j < p; j++) {
-        const frac_real *crow = m->C + j * n;
-        frac_real s = FRAC_R(0.0);
-        for (i = 0; i < n; i++) s += crow[i] * e[i];
-        if (y_hat != NULL) y_hat[j] = s;
+        if (y_hat != NULL) y_hat[j] = nu[j];
         if (FRAC_ISFINITE(y[j])) {
-            nu[j] = y[j] - s;
+            nu[j] = y[j] - nu[j];
         } else {
             nu[j] = FRAC_R(0.0);
             status = FRAC_W_MEAS_SKIPPED;
         }
     }
-    /* t = A e + B u + L nu */
-    for (i = 0; i < n; i++) {
-        const frac_real *arow = m->A + i * n;
-        const frac_real *lrow = m->L + i * p;
-        frac_real s = FRAC_R(0.0);
-        for (j = 0; j < n; j++) s += arow[j] * e[j];
-        for (j = 0; j < p; j++) s += lrow[j] * nu[j];
-        if (m->m > 0) {
-            const frac_real *brow = m->B + i * m->m;
-            for (j = 0; j < m->m; j++) s += brow[j] * u[j];
-        }
-        t[i] = s;
+    /* t = A e + B u + L nu; L column by column (p is small, n long) */
+    frac_mat_vec(m->A, n, n, e, t);
+    if (m->m > 0) frac_mat_vec_add(m->B, n, m->m, u, t);
+    for (j = 0; j < p; j++) {
+        const frac_real nj = nu[j];
+        const frac_real *lcol = m->L + j;
+        for (i = 0; i < n; i++) t[i] += lcol[i * p] * nj;
     }
     if (!frac_mat_all_finite(t, n)) return FRAC_E_NUMERIC;
     /* swap the buffers: the new estimate becomes current without a copy */
