@@ -324,6 +324,8 @@ class Parser:
                                    % (name.text, repr(sec.text) if sec.text else "end of file"), sec)
                 self.comment()
                 while self.peek().text.upper() != "END_VAR":
+                    if self.peek().text.upper() in KEYWORDS and self.peek(1).text == ":":
+                        raise self.err("'%s' is a reserved word and cannot name a variable" % self.peek().text)
                     if self.peek().kind == "eof" or self.peek().text.upper() in KEYWORDS:
                         raise self.err("%s section of '%s' has no END_VAR" % (sec.text, name.text), sec)
                     fb[key].append(self.member(sec.text))

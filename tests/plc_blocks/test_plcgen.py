@@ -169,6 +169,10 @@ class MalformedDeclarations(unittest.TestCase):
         self.reject(r"initial value for 'U' is not supported",
                     **{"Lib.fun": FUN.replace("U : REAL;", "U : REAL := 1.0;")})
 
+    def test_reserved_word_as_a_name(self):
+        self.reject(r"Lib\.fun:5: error: 'Reference' is a reserved word",
+                    **{"Lib.fun": FUN.replace("U : REAL;", "Reference : REAL;")})
+
     def test_reference_without_to(self):
         self.reject(r"expected 'TO' after REFERENCE", **{"Lib.fun": FUN.replace("REFERENCE TO LREAL", "REFERENCE LREAL")})
 
