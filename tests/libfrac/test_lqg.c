@@ -87,6 +87,61 @@ static void test_lqg_structured_step_equals_dense_augmented_predictor(void **sta
     }
 }
 
+/* The same agreement at the thesis Exp. D size (notes 004b check 17):
+ * n = 16, d_i = 4, d_o = 3 on y_3, 23 + 1 states, K 1 x 23, L 24 x 3,
+ * with arbitrary (deterministic) matrices. */
+static void test_lqg_exp_d_dimensions_structured_equals_dense(void **state)
+{
+    enum { N = 16, P = 3, NBD = 23, NED = 24 };
+    static const size_t d_o[P] = {0, 0, 3};
+    static frac_real A[N * N], B[N], C[P * N], K[NBD], L[NED * P];
+    static frac_real Ab[NBD * NBD], Bb[NBD], Eb[NBD], Cb[P * NBD], Ae[NED * NED], Be[NED], Ce[P * NED];
+    frac_real st[FRAC_LQG_STORAGE(NED, P)], sp[FRAC_KALMAN_PRED_STORAGE(NED, P)];
+    frac_real yref[P], y[P], ey[P], u, ud, eu, fb;
+    frac_lqg_params prm;
+    frac_kalman_pred_params pp;
+    frac_lqg c;
+    frac_kalman_pred kp;
+    unsigned long s = 99;
+    size_t i;
+    int k;
+    (void)state;
+    for (i = 0; i < N * N; i++) {
+        s = s * 1103515245UL + 12345UL;
+        A[i] = (frac_real)(((double)((s >> 8) % 2001) - 1000.0) * 4e-5);
+    }
+    for (i = 0; i < N; i++) {
+        A[i * N + i] += FRAC_R(0.9);
+        B[i] = (frac_real)(0.01 * (double)(i % 5));
+    }
+    for (i = 0; i < P * N; i++) C[i] = (frac_real)((i % 7 == 0) ? 1.0 : 0.01 * (double)(i % 3));
+    for (i = 0; i < NBD; i++) K[i] = (frac_real)(-0.02 * (double)(i % 4));
+    for (i = 0; i < NED * P; i++) L[i] = (frac_real)(0.03 * (double)((i * 7) % 5) - 0.05);
+    prm.n = N; prm.d_i = 4; prm.p = P; prm.d_o = d_o;
+    prm.A = A; prm.B = B; prm.C = C; prm.K = K; prm.L = L;
+    assert_int_equal(frac_delay_aug_order(N, 4, P, d_o), NBD);
+    assert_int_equal(frac_lqg_init(&c, &prm, st, sizeof st / sizeof st[0]), FRAC_OK);
+    assert_int_equal(frac_delay_augment(A, B, C, N, 4, P, d_o, Ab, Bb, Eb, Cb), FRAC_OK);
+    assert_int_equal(frac_kalman_augment_disturbance(Ab, Bb, Eb, Cb, NBD, 1, P, Ae, Be, Ce), FRAC_OK);
+    pp.n = NED; pp.m = 1; pp.p = P; pp.A = Ae; pp.B = Be; pp.C = Ce; pp.L = L; pp.e0 = NULL;
+    assert_int_equal(frac_kalman_pred_init(&kp, &pp, sp, sizeof sp / sizeof sp[0]), FRAC_OK);
+    for (k = 0; k < 200; k++) {
+        for (i = 0; i < P; i++) {
+            yref[i] = (frac_real)sin(0.03 * k + (double)i);
+            y[i] = (frac_real)(0.9 * sin(0.03 * k + (double)i) + 0.01 * cos(0.2 * k));
+        }
+        fb = FRAC_R(0.0);
+        for (i = 0; i < NBD; i++) fb += K[i] * kp.e[i];
+        ud = FRAC_R(0.2) + fb - kp.e[NBD];
+        assert_int_equal(frac_lqg_step(&c, FRAC_R(0.2), yref, y, &u), FRAC_OK);
+        assert_close(u, ud, 1e-10);
+        eu = FRAC_R(0.2) - ud;
+        for (i = 0; i < P; i++) ey[i] = yref[i] - y[i];
+        assert_int_equal(frac_kalman_pred_step(&kp, &eu, ey, NULL), FRAC_OK);
+        for (i = 0; i < NED; i++) assert_close(c.e[i], kp.e[i], 1e-10 * (1.0 + fabs((double)kp.e[i])));
+    }
+}
+
 /* Closed loop: plant between the real shift registers (d_i = 4 on the
  * torque, d_o = 3 on omega), constant friction torque z at the input.
  * The SciPy-designed LQG brings theta to the reference and its
@@ -185,6 +240,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_lqg_structured_step_equals_dense_augmented_predictor),
+        cmocka_unit_test(test_lqg_exp_d_dimensions_structured_equals_dense),
         cmocka_unit_test(test_lqg_closed_loop_with_delays_rejects_constant_friction),
         cmocka_unit_test(test_lqg_bad_reference_rejected_with_state_untouched),
         cmocka_unit_test(test_lqg_init_rejects_bad_parameters),
