@@ -1,6 +1,8 @@
 /* Command-line handling and the reactive loop of the rig executables. */
+#include <sched.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 #include <time.h>
 #include "app_common.h"
 #ifdef HIL_HAVE_PLC
@@ -19,6 +21,8 @@ static const char common_usage[] =
     "  --scenario FILE     key = value scenario file (see docs/hil.md)\n"
     "  --set KEY=VALUE     override one scenario key (repeatable)\n"
     "  --idle-exit S       exit after S seconds without a frame (default 2)\n"
+    "  --rt-priority N     SCHED_FIFO priority 1..99 and locked memory (needs the privilege;\n"
+    "                      without it a warning, normal scheduling)\n"
     "  --help              this text\n";
 
 static void need(int i, int argc, const char *opt)
@@ -75,6 +79,21 @@ void app_parse(int argc, char **argv, struct app_opts *o, const char *usage)
             if (*end || !(o->idle_exit > 0.0)) {
                 fprintf(stderr, "--idle-exit wants seconds > 0\n");
                 exit(2);
+            }
+        } else if (strcmp(a, "--rt-priority") == 0) {
+            char *end;
+            struct sched_param sp;
+            need(i, argc, a);
+            o->rt_priority = (int)strtol(argv[++i], &end, 10);
+            if (*end || o->rt_priority < 1 || o->rt_priority > 99) {
+                fprintf(stderr, "--rt-priority wants 1..99\n");
+                exit(2);
+            }
+            memset(&sp, 0, sizeof sp);
+            sp.sched_priority = o->rt_priority;
+            if (sched_setscheduler(0, SCHED_FIFO, &sp) != 0 || mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
+                perror("--rt-priority (continuing with normal scheduling)");
+                o->rt_priority = 0;
             }
         } else if (strcmp(a, "--csv") == 0) {
             need(i, argc, a);

@@ -14,6 +14,7 @@ struct app_opts {
     const char *csv;       /* --csv FILE */
     const char *out;       /* --out FILE or DIR */
     long cycles;           /* --cycles N (controller) */
+    int rt_priority;       /* --rt-priority N: SCHED_FIFO priority (0: normal scheduling) */
     struct hil_rig_config cfg; /* --scenario FILE and --set KEY=VALUE applied */
 };
 

@@ -128,6 +128,7 @@ static void report_json(FILE *meta, const char *dir, const char *name, int last)
 
 static int run_processes(const struct app_opts *o, int realtime)
 {
+    char prio[16];
     static const char *nodes[] = {"hil_ctrl", "hil_plant", "hil_drive", "hil_imu", "hil_candump"};
     char exe[PATH_MAX], dir[PATH_MAX], bin[5][PATH_MAX + 16], bus[5][64], scen[PATH_MAX + 16], logp[PATH_MAX + 16],
          csvp[PATH_MAX + 16];
@@ -164,6 +165,7 @@ static int run_processes(const struct app_opts *o, int realtime)
     snprintf(scen, sizeof scen, "%s/scenario.txt", o->out);
     snprintf(logp, sizeof logp, "%s/frames.log", o->out);
     snprintf(csvp, sizeof csvp, "%s/signals.csv", o->out);
+    snprintf(prio, sizeof prio, "%d", o->rt_priority);
     f = fopen(scen, "w");
     if (!f || hil_rig_config_write(&o->cfg, f) != HIL_OK) {
         perror(scen);
@@ -171,20 +173,41 @@ static int run_processes(const struct app_opts *o, int realtime)
     }
     fclose(f);
     {
-        char *a[] = {bin[4], "--bus", bus[4], "--out", logp, "--idle-exit", "1", NULL};
+        char *a[] = {bin[4], "--bus", bus[4], "--out", logp, "--idle-exit", "1", NULL, NULL, NULL};
+        if (o->rt_priority) {
+            a[7] = "--rt-priority";
+            a[8] = prio;
+        }
         pid[4] = spawn(o->out, "hil_candump", a);
     }
     pause_s(0.2); /* the logger listens before anyone sends */
     for (i = 1; i < 4; i++) {
-        char *a[] = {bin[i], "--bus", bus[i], "--scenario", scen, "--idle-exit", "1", NULL};
+        char *a[] = {bin[i], "--bus", bus[i], "--scenario", scen, "--idle-exit", "1", NULL, NULL, NULL};
+        if (o->rt_priority) {
+            a[7] = "--rt-priority";
+            a[8] = prio;
+        }
         pid[i] = spawn(o->out, nodes[i], a);
     }
     pause_s(0.2);
     t0 = app_now();
     {
-        char *a[] = {bin[0], realtime ? "--bus" : "--lockstep", realtime ? bus[0] : "--bus",
-                     realtime ? "--scenario" : bus[0], realtime ? scen : "--scenario",
-                     realtime ? "--csv" : scen, realtime ? csvp : "--csv", realtime ? NULL : csvp, NULL};
+        char *a[12];
+        int n = 0;
+        a[n++] = bin[0];
+        if (!realtime)
+            a[n++] = "--lockstep";
+        a[n++] = "--bus";
+        a[n++] = bus[0];
+        a[n++] = "--scenario";
+        a[n++] = scen;
+        a[n++] = "--csv";
+        a[n++] = csvp;
+        if (o->rt_priority) {
+            a[n++] = "--rt-priority";
+            a[n++] = prio;
+        }
+        a[n] = NULL;
         pid[0] = spawn(o->out, "hil_ctrl", a);
     }
     for (i = 0; i < 5; i++) {
@@ -197,8 +220,8 @@ static int run_processes(const struct app_opts *o, int realtime)
     if (!meta)
         return 1;
     hil_rig_meta_begin(&o->cfg, realtime ? "realtime" : "lockstep-processes", meta);
-    fprintf(meta, "  \"bus\": \"%s\",\n  \"wall_s\": %.6f,\n  \"reports\": {\n",
-            o->bus_given ? o->bus : "udp loopback", app_now() - t0);
+    fprintf(meta, "  \"bus\": \"%s\",\n  \"rt_priority\": %d,\n  \"wall_s\": %.6f,\n  \"reports\": {\n",
+            o->bus_given ? o->bus : "udp loopback", o->rt_priority, app_now() - t0);
     for (i = 0; i < 5; i++) {
         char name[64];
         snprintf(name, sizeof name, "%s.txt", nodes[i]);
