@@ -332,8 +332,8 @@ int frac_lut1_inverse(frac_lut1 *t, frac_real yq, frac_real *x)
     return FRAC_OK;
 }
 
-int frac_lut2_init(frac_lut2 *t, const frac_lut_axis_params *ax1, const frac_lut_axis_params *ax2,
-                   const frac_real *z, int range)
+int frac_lut2_init_interp(frac_lut2 *t, const frac_lut_axis_params *ax1, const frac_lut_axis_params *ax2,
+                          const frac_real *z, int range, int interp)
 {
     size_t i, n;
     int st;
@@ -341,6 +341,7 @@ int frac_lut2_init(frac_lut2 *t, const frac_lut_axis_params *ax1, const frac_lut
     t->ready = 0;
     if (ax1 == NULL || ax2 == NULL || z == NULL) return FRAC_E_NULL;
     if (range != FRAC_LUT_CLAMP && range != FRAC_LUT_EXTRAPOLATE) return FRAC_E_PARAM;
+    if (interp != FRAC_LUT_LINEAR && interp != FRAC_LUT_CUBIC) return FRAC_E_PARAM;
     st = axis_init(&t->a1, ax1->x, ax1->n, ax1->x0, ax1->h);
     if (st != FRAC_OK) return st;
     st = axis_init(&t->a2, ax2->x, ax2->n, ax2->x0, ax2->h);
@@ -351,9 +352,58 @@ int frac_lut2_init(frac_lut2 *t, const frac_lut_axis_params *ax1, const frac_lut
     }
     t->z = z;
     t->range = range;
+    t->interp = interp;
     t->last = z[0];
     t->ready = 1;
     return FRAC_OK;
+}
+
+int frac_lut2_init(frac_lut2 *t, const frac_lut_axis_params *ax1, const frac_lut_axis_params *ax2,
+                   const frac_real *z, int range)
+{
+    return frac_lut2_init_interp(t, ax1, ax2, z, range, FRAC_LUT_LINEAR);
+}
+
+/*
+ * Fritsch-Butland slope at an interior knot from the secants delta_l,
+ * delta_r over the neighbouring intervals h_l, h_r (SIAM J. Sci. Stat.
+ * Comput. 5, 1984): weighted harmonic mean, 0 at an extremum. It never
+ * exceeds 3 times either secant, so every segment stays monotone.
+ */
+static frac_real fb_slope(frac_real hl, frac_real hr, frac_real dl, frac_real dr)
+{
+    if (!(dl * dr > FRAC_R(0.0))) return FRAC_R(0.0);
+    return FRAC_R(3.0) * (hl + hr) / ((FRAC_R(2.0) * hr + hl) / dl + (hr + FRAC_R(2.0) * hl) / dr);
+}
+
+/*
+ * Monotone cubic Hermite on segment k of one axis at local t in [0, 1];
+ * p points at the value of knot k, contiguous along the axis: p[-1] (if
+ * k > 0), p[0], p[1], p[2] (if k + 2 < n) are read. Local slopes at k and
+ * k + 1, the pchip end rule at the edges.
+ */
+static frac_real axis_cubic(const frac_lut_axis *a, size_t k, frac_real t, const frac_real *p)
+{
+    size_t n = a->n;
+    frac_real x0 = axis_knot(a, k), x1 = axis_knot(a, k + 1), h = x1 - x0;
+    frac_real y0 = p[0], y1 = p[1];
+    frac_real dc = (y1 - y0) / h, d0, d1;
+    if (n == 2) return y0 + t * (y1 - y0);
+    if (k > 0) {
+        frac_real hl = x0 - axis_knot(a, k - 1);
+        d0 = fb_slope(hl, h, (y0 - *(p - 1)) / hl, dc);
+    } else {
+        frac_real h2 = axis_knot(a, 2) - x1;
+        d0 = end_slope(h, h2, dc, (p[2] - y1) / h2);
+    }
+    if (k + 2 < n) {
+        frac_real hr = axis_knot(a, k + 2) - x1;
+        d1 = fb_slope(h, hr, dc, (p[2] - y1) / hr);
+    } else {
+        frac_real hl = x0 - axis_knot(a, k - 1);
+        d1 = end_slope(h, hl, dc, (y0 - *(p - 1)) / hl);
+    }
+    return hermite(y0, y1, h * d0, h * d1, t);
 }
 
 int frac_lut2_eval(frac_lut2 *t, frac_real x1, frac_real x2, frac_real *z)
@@ -371,11 +421,20 @@ int frac_lut2_eval(frac_lut2 *t, frac_real x1, frac_real x2, frac_real *z)
         return FRAC_E_NONFINITE;
     }
     n2 = t->a2.n;
-    r0 = t->z + i * n2 + j;
-    r1 = r0 + n2;
-    z0 = r0[0] + v * (r0[1] - r0[0]);
-    z1 = r1[0] + v * (r1[1] - r1[0]);
-    t->last = z0 + u * (z1 - z0);
+    if (t->interp == FRAC_LUT_CUBIC && u >= FRAC_R(0.0) && u <= FRAC_R(1.0) && v >= FRAC_R(0.0) &&
+        v <= FRAC_R(1.0)) {
+        /* along x2 on grid rows i-1..i+2, then along x1 through those values */
+        frac_real w[4];
+        size_t lo = i > 0 ? i - 1 : 0, hi = i + 2 < t->a1.n ? i + 2 : t->a1.n - 1, r;
+        for (r = lo; r <= hi; r++) w[r - lo] = axis_cubic(&t->a2, j, v, t->z + r * n2 + j);
+        t->last = axis_cubic(&t->a1, i, u, w + (i - lo));
+    } else {
+        r0 = t->z + i * n2 + j;
+        r1 = r0 + n2;
+        z0 = r0[0] + v * (r0[1] - r0[0]);
+        z1 = r1[0] + v * (r1[1] - r1[0]);
+        t->last = z0 + u * (z1 - z0);
+    }
     *z = t->last;
     return s1 != FRAC_OK ? s1 : s2;
 }

@@ -296,6 +296,83 @@ static void test_lut2_bilinear_exact_on_bilinear_function_with_flags(void **stat
     assert_int_equal(frac_lut2_init(&t, NULL, &a2, z, FRAC_LUT_CLAMP), FRAC_E_NULL);
 }
 
+/* 2-D monotone cubic: exact at the grid, monotone along both axes for data
+ * monotone along both, more accurate than bilinear on smooth data. */
+static void test_lut2_cubic_exact_monotone_and_accurate(void **state)
+{
+    enum { N1 = 6, N2 = 7 };
+    const frac_real x1[N1] = {0.0, 0.2, 0.5, 1.1, 1.3, 2.0};
+    frac_lut2 tc, tl;
+    frac_lut_axis_params a1, a2;
+    frac_real z[N1 * N2], zs[N1 * N2], v, prev, vl;
+    /* steps, plateaus and a steep rise, increasing in both directions */
+    const frac_real g[N2] = {0.0, 0.0, 0.1, 3.0, 3.0, 3.05, 9.0};
+    const frac_real f[N1] = {0.0, 1.0, 1.0, 1.2, 6.0, 6.5};
+    double p, q, ec = 0.0, el = 0.0;
+    int i, j;
+    (void)state;
+    a1.x = x1; a1.n = N1; a1.x0 = 0; a1.h = 0;
+    a2.x = NULL; a2.n = N2; a2.x0 = FRAC_R(-1.0); a2.h = FRAC_R(0.5);
+    for (i = 0; i < N1; i++) {
+        for (j = 0; j < N2; j++) {
+            z[i * N2 + j] = f[i] + g[j] + FRAC_R(0.1) * f[i] * g[j];
+            zs[i * N2 + j] = (frac_real)(exp(0.5 * (double)x1[i]) * atan(-0.7 + 0.5 * j));
+        }
+    }
+    assert_int_equal(frac_lut2_init_interp(&tc, &a1, &a2, z, FRAC_LUT_CLAMP, FRAC_LUT_CUBIC), FRAC_OK);
+    for (i = 0; i < N1; i++) {
+        for (j = 0; j < N2; j++) {
+            assert_int_equal(frac_lut2_eval(&tc, x1[i], FRAC_R(-1.0) + FRAC_R(0.5) * j, &v), FRAC_OK);
+            assert_close(v, z[i * N2 + j], 1e-12);
+        }
+    }
+    for (p = 0.0; p <= 2.0; p += 0.05) {
+        frac_lut2_eval(&tc, (frac_real)p, FRAC_R(-1.0), &prev);
+        for (q = -1.0; q <= 2.0; q += 0.01) {
+            frac_lut2_eval(&tc, (frac_real)p, (frac_real)q, &v);
+            assert_true(v >= prev - 1e-12);
+            prev = v;
+        }
+    }
+    for (q = -1.0; q <= 2.0; q += 0.05) {
+        frac_lut2_eval(&tc, FRAC_R(0.0), (frac_real)q, &prev);
+        for (p = 0.0; p <= 2.0; p += 0.005) {
+            frac_lut2_eval(&tc, (frac_real)p, (frac_real)q, &v);
+            assert_true(v >= prev - 1e-12);
+            prev = v;
+        }
+    }
+    /* smooth data */
+    assert_int_equal(frac_lut2_init_interp(&tc, &a1, &a2, zs, FRAC_LUT_CLAMP, FRAC_LUT_CUBIC), FRAC_OK);
+    assert_int_equal(frac_lut2_init(&tl, &a1, &a2, zs, FRAC_LUT_CLAMP), FRAC_OK);
+    for (p = 0.0; p <= 2.0; p += 0.013) {
+        for (q = -1.0; q <= 2.0; q += 0.017) {
+            double ex = exp(0.5 * p) * atan(q + 0.3);
+            frac_lut2_eval(&tc, (frac_real)p, (frac_real)q, &v);
+            frac_lut2_eval(&tl, (frac_real)p, (frac_real)q, &vl);
+            ec += ((double)v - ex) * ((double)v - ex);
+            el += ((double)vl - ex) * ((double)vl - ex);
+        }
+    }
+    /* mean-square error over the table */
+    assert_true(ec < 0.25 * el);
+    /* outside: clamped, or the edge cell continued bilinearly */
+    assert_int_equal(frac_lut2_eval(&tc, FRAC_R(3.0), FRAC_R(0.0), &v), FRAC_W_CLAMPED);
+    frac_lut2_eval(&tc, FRAC_R(2.0), FRAC_R(0.0), &vl);
+    assert_close(v, vl, 1e-12);
+    assert_int_equal(frac_lut2_init_interp(&tc, &a1, &a2, zs, FRAC_LUT_EXTRAPOLATE, FRAC_LUT_CUBIC), FRAC_OK);
+    assert_int_equal(frac_lut2_init_interp(&tl, &a1, &a2, zs, FRAC_LUT_EXTRAPOLATE, FRAC_LUT_LINEAR), FRAC_OK);
+    assert_int_equal(frac_lut2_eval(&tc, FRAC_R(2.5), FRAC_R(0.2), &v), FRAC_W_EXTRAPOLATED);
+    frac_lut2_eval(&tl, FRAC_R(2.5), FRAC_R(0.2), &vl);
+    assert_close(v, vl, 0.0);
+    assert_int_equal(frac_lut2_init_interp(&tc, &a1, &a2, zs, FRAC_LUT_CLAMP, 7), FRAC_E_PARAM);
+    /* two knots on an axis: linear along it (z read as 6 x 2) */
+    a2.n = 2;
+    assert_int_equal(frac_lut2_init_interp(&tc, &a1, &a2, zs, FRAC_LUT_CLAMP, FRAC_LUT_CUBIC), FRAC_OK);
+    frac_lut2_eval(&tc, x1[3], FRAC_R(-0.75), &v);
+    assert_close(v, 0.5 * (zs[3 * 2] + zs[3 * 2 + 1]), 1e-12);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -310,6 +387,7 @@ int main(void)
         cmocka_unit_test(test_lut_inverse_needs_monotone_data),
         cmocka_unit_test(test_lut_bad_init_arguments),
         cmocka_unit_test(test_lut2_bilinear_exact_on_bilinear_function_with_flags),
+        cmocka_unit_test(test_lut2_cubic_exact_monotone_and_accurate),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

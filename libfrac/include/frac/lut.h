@@ -108,14 +108,25 @@ int frac_lut1_eval(frac_lut1 *t, frac_real xq, frac_real *y);
 int frac_lut1_inverse(frac_lut1 *t, frac_real yq, frac_real *x);
 
 /*
- * 2-D table z(x1, x2), bilinear, row-major values z[i * n2 + j] at
- * (x1_i, x2_j). Each axis uniform or on breakpoints (as frac_lut1).
- * Out of range on either axis: clamp or extrapolate as for 1-D, per axis.
+ * 2-D table z(x1, x2), row-major values z[i * n2 + j] at (x1_i, x2_j).
+ * Each axis uniform or on breakpoints (as frac_lut1).
+ *  - linear: bilinear on the cell.
+ *  - monotone cubic: separable; along x2 on the four grid rows i-1..i+2
+ *    around the cell, then along x1 through those four values, each pass
+ *    a cubic Hermite with the local slopes of F. N. Fritsch and J. Butland,
+ *    "A method for constructing local monotone piecewise cubic
+ *    interpolants", SIAM J. Sci. Stat. Comput. 5 (1984) (weighted harmonic
+ *    mean of the neighbouring secants, 0 at an extremum; the pchip end
+ *    rule at the table edge). Each pass is monotone where its data are and
+ *    C^1; no slope storage is needed. Exact at the grid points.
+ * Out of range on either axis: clamp, or extrapolate (the edge cell
+ * continued bilinearly, for both interpolations), flagged as for 1-D.
  */
 typedef struct frac_lut2 {
     frac_lut_axis a1, a2;
     const frac_real *z;
     int range;
+    int interp;
     frac_real last;
     int ready;
 } frac_lut2;
@@ -131,11 +142,16 @@ typedef struct frac_lut_axis_params {
 } frac_lut_axis_params;
 
 /*
- * Returns FRAC_OK, FRAC_E_NULL, FRAC_E_DIM (an axis with n < 2),
- * FRAC_E_PARAM, FRAC_E_NOT_MONOTONE, FRAC_E_NONFINITE (as frac_lut1_init).
+ * Bilinear table. Returns FRAC_OK, FRAC_E_NULL, FRAC_E_DIM (an axis with
+ * n < 2), FRAC_E_PARAM, FRAC_E_NOT_MONOTONE, FRAC_E_NONFINITE (as
+ * frac_lut1_init).
  */
 int frac_lut2_init(frac_lut2 *t, const frac_lut_axis_params *ax1, const frac_lut_axis_params *ax2,
                    const frac_real *z, int range);
+
+/* As frac_lut2_init with the interpolation chosen (FRAC_LUT_LINEAR or FRAC_LUT_CUBIC). */
+int frac_lut2_init_interp(frac_lut2 *t, const frac_lut_axis_params *ax1, const frac_lut_axis_params *ax2,
+                          const frac_real *z, int range, int interp);
 
 /* z = f(x1, x2). Statuses as frac_lut1_eval (the stronger of both axes). */
 int frac_lut2_eval(frac_lut2 *t, frac_real x1, frac_real x2, frac_real *z);
