@@ -15,7 +15,7 @@
 #define LAMBDA 1.92
 #define PLANT_T (1.0 / (W0 * W0))
 
-enum { NMAX = 50001 };
+enum { NMAX = 30001 };
 static frac_real plant_st[FRAC_GL_STORAGE(NMAX) + 200], ctrl_st[2 * FRAC_GL_STORAGE(NMAX)];
 static double ybuf[NMAX];
 
@@ -63,7 +63,7 @@ static void run_pi(double ts, int n)
     frac_fopid c;
     frac_real y = 0, u = 0;
     int k;
-    plant_init(&g, ts, (size_t)n + 1);
+    plant_init(&g, ts, (size_t)(20.0 / ts)); /* 20 s of plant memory: its weights decay as j^-2.92 */
     ctrl_init(&c, 0.1219, 0.1255, 0.0, 0.0, ts, (size_t)n + 1);
     for (k = 0; k < n; k++) {
         assert_int_equal(frac_fopid_step(&c, FRAC_R(0.5), y, &u), FRAC_OK);
@@ -132,10 +132,10 @@ static void test_seed001_pi_loop_reproduces_the_note_and_the_exact_closed_loop_p
     assert_close(ybuf[n40 - 1], 0.4544, 1e-3);
     assert_true(ybuf[n40 - 1] < 0.5); /* slow fractional creep from below */
     /* the ripple is the dominant closed-loop pole pair of the exact loop */
-    run_pi(2e-3, 20000);
-    ripple(ybuf, 20000, 2e-3, 6.4, 8.0, 38.0, &w2, &s2);
-    run_pi(1e-3, 40000);
-    ripple(ybuf, 40000, 1e-3, 6.4, 8.0, 38.0, &w1, &s1);
+    run_pi(2e-3, 15000);
+    ripple(ybuf, 15000, 2e-3, 6.4, 8.0, 29.0, &w2, &s2);
+    run_pi(1e-3, 30000);
+    ripple(ybuf, 30000, 1e-3, 6.4, 8.0, 29.0, &w1, &s1);
     sx = 2.0 * s1 - s2; /* GL is first order in Ts: Richardson extrapolation */
     printf("  exact dominant poles of 1 + C G = 0: %.5f +- %.5fj\n", creal(p), cimag(p));
     printf("  simulated ripple: Ts = 2 ms: w = %.5f, sigma = %.5f; Ts = 1 ms: w = %.5f, sigma = %.5f; "
@@ -162,7 +162,7 @@ static void pd_disturbance(double kph, int sensor, double *yss, double *yend)
     frac_fopid c;
     frac_real y = 0, u = 0;
     double ts = 2e-3, a = 1.0, m1 = 0, m2 = 0, t1 = 0, t2 = 0;
-    int n = 50000, k, n1 = 0, n2 = 0;
+    int n = 30000, k, n1 = 0, n2 = 0;
     plant_init(&g, ts, 10000); /* 20 s of plant memory: DC error ~1e-5 */
     ctrl_init(&c, kph + 1.0, 0.0, 0.02556009, 1.0, ts, (size_t)n + 1);
     for (k = 0; k < n; k++) {
@@ -170,8 +170,8 @@ static void pd_disturbance(double kph, int sensor, double *yss, double *yend)
         double t = (k + 1) * ts;
         assert_int_equal(frac_fopid_step(&c, FRAC_R(0.0), ym, &u), FRAC_OK);
         assert_int_equal(frac_foprocess_step(&g, u + (sensor ? FRAC_R(0.0) : (frac_real)a), &y), FRAC_OK);
-        if (t > 50.0 && t <= 60.0) { m1 += y; t1 += pow(t, -0.88); n1++; }
-        if (t > 90.0) { m2 += y; t2 += pow(t, -0.88); n2++; }
+        if (t > 30.0 && t <= 40.0) { m1 += y; t1 += pow(t, -0.88); n1++; }
+        if (t > 50.0) { m2 += y; t2 += pow(t, -0.88); n2++; }
     }
     m1 /= n1; m2 /= n2; t1 /= n1; t2 /= n2;
     *yss = (m2 * t1 - m1 * t2) / (t1 - t2);
@@ -188,10 +188,10 @@ static void test_seed001_pd_positive_feedback_steady_state_errors(void **state)
         for (sensor = 0; sensor < 2; sensor++) {
             double kph = kphs[i], want = sensor ? -kph / (kph + 1.0) : 1.0 / (kph + 1.0), yss, yend;
             pd_disturbance(kph, sensor, &yss, &yend);
-            printf("  PD K^p = %.7f, %s step a = 1: y_ss = %.7f (y(100 s) = %.7f), exact %.7f, error %.1e\n", kph,
+            printf("  PD K^p = %.7f, %s step a = 1: y_ss = %.7f (y(60 s) = %.7f), exact %.7f, error %.1e\n", kph,
                    sensor ? "sensor" : "input ", yss, yend, want, yss - want);
             assert_close(yss, want, 1e-4);
-            assert_close(yend, want, 2e-4);
+            assert_close(yend, want, 3e-4);
         }
 }
 
