@@ -6,11 +6,14 @@
  * executable) on one bus: --bus socketcan:IFACE, or by default a UDP loopback
  * bus; the controller paces in lockstep over the bus, or with --realtime by
  * the wall clock. Output in DIR: frames.log (candump format), signals.csv,
- * meta.json, and with --processes each node's report (NODE.txt) and the
- * effective scenario (scenario.txt) the nodes were started with. */
+ * meta.json, and with --processes each node's report (NODE.txt), the
+ * effective scenario (scenario.txt) the nodes were started with, and the
+ * controller's and the plant's own CSVs (controller.csv, truth.csv) that
+ * signals.csv joins. */
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
+#include <math.h>
 #include <signal.h>
 #include <stdlib.h>
 #include <string.h>
@@ -126,12 +129,58 @@ static void report_json(FILE *meta, const char *dir, const char *name, int last)
         fclose(f);
 }
 
+/* signals.csv with the lockstep bench's columns: row k of controller.csv
+ * (t, ref, torque_cmd, motor_angle, motor_velocity, imu_rate, fault) joined
+ * with row k of the plant's truth.csv (t, tip_angle, tip_velocity,
+ * torque_actual): the plant steps once per SYNC, so row k of both is cycle k.
+ * Returns 0, or -1 when the row counts or times differ. */
+static int merge_signals(const char *dir)
+{
+    FILE *c = open_in(dir, "controller.csv", "r"), *p = open_in(dir, "truth.csv", "r"),
+         *o = open_in(dir, "signals.csv", "w");
+    char lc[512], lp[512];
+    int rc = 0;
+    if (!c || !p || !o)
+        rc = -1;
+    if (!rc && (!fgets(lc, sizeof lc, c) || !fgets(lp, sizeof lp, p)))
+        rc = -1;
+    if (!rc)
+        fprintf(o, "t,ref,torque_cmd,motor_angle,motor_velocity,imu_rate,tip_angle,tip_velocity,"
+                   "torque_actual,fault\n");
+    while (!rc && fgets(lc, sizeof lc, c)) {
+        char *fault = strrchr(lc, ','), *tp;
+        double t;
+        if (!fgets(lp, sizeof lp, p) || !fault) {
+            rc = -1;
+            break;
+        }
+        *fault++ = '\0';
+        lp[strcspn(lp, "\n")] = '\0';
+        tp = strchr(lp, ',');
+        t = strtod(lc, NULL);
+        if (!tp || fabs(t - strtod(lp, NULL)) > 1e-6) {
+            rc = -1;
+            break;
+        }
+        fprintf(o, "%s%s,%s", lc, tp, fault);
+    }
+    if (!rc && p && fgets(lp, sizeof lp, p))
+        rc = -1;
+    if (c)
+        fclose(c);
+    if (p)
+        fclose(p);
+    if (o)
+        fclose(o);
+    return rc;
+}
+
 static int run_processes(const struct app_opts *o, int realtime)
 {
     char prio[16];
     static const char *nodes[] = {"hil_ctrl", "hil_plant", "hil_drive", "hil_imu", "hil_candump"};
     char exe[PATH_MAX], dir[PATH_MAX], bin[5][PATH_MAX + 16], bus[5][64], scen[PATH_MAX + 16], logp[PATH_MAX + 16],
-         csvp[PATH_MAX + 16];
+         csvp[PATH_MAX + 16], truthp[PATH_MAX + 16];
     pid_t pid[5];
     ssize_t n;
     FILE *f, *meta;
@@ -164,7 +213,8 @@ static int run_processes(const struct app_opts *o, int realtime)
     }
     snprintf(scen, sizeof scen, "%s/scenario.txt", o->out);
     snprintf(logp, sizeof logp, "%s/frames.log", o->out);
-    snprintf(csvp, sizeof csvp, "%s/signals.csv", o->out);
+    snprintf(csvp, sizeof csvp, "%s/controller.csv", o->out);
+    snprintf(truthp, sizeof truthp, "%s/truth.csv", o->out);
     snprintf(prio, sizeof prio, "%d", o->rt_priority);
     f = fopen(scen, "w");
     if (!f || hil_rig_config_write(&o->cfg, f) != HIL_OK) {
@@ -182,10 +232,15 @@ static int run_processes(const struct app_opts *o, int realtime)
     }
     pause_s(0.2); /* the logger listens before anyone sends */
     for (i = 1; i < 4; i++) {
-        char *a[] = {bin[i], "--bus", bus[i], "--scenario", scen, "--idle-exit", "1", NULL, NULL, NULL};
+        char *a[] = {bin[i], "--bus", bus[i], "--scenario", scen, "--idle-exit", "1", NULL, NULL, NULL, NULL, NULL};
+        int k = 7;
         if (o->rt_priority) {
-            a[7] = "--rt-priority";
-            a[8] = prio;
+            a[k++] = "--rt-priority";
+            a[k++] = prio;
+        }
+        if (i == 1) {
+            a[k++] = "--csv";
+            a[k++] = truthp;
         }
         pid[i] = spawn(o->out, nodes[i], a);
     }
@@ -215,6 +270,10 @@ static int run_processes(const struct app_opts *o, int realtime)
             fprintf(stderr, "hil_bench: %s failed (see %s/%s.txt)\n", nodes[i], o->out, nodes[i]);
             rc = 1;
         }
+    }
+    if (merge_signals(o->out) != 0) {
+        fprintf(stderr, "hil_bench: controller.csv and truth.csv do not line up\n");
+        rc = 1;
     }
     meta = open_in(o->out, "meta.json", "w");
     if (!meta)

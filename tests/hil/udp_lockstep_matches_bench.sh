@@ -2,7 +2,8 @@
 # The node executables as separate processes on the UDP loopback bus, the
 # controller pacing in lockstep, must reproduce the in-process lockstep bench
 # exactly: same controller signals cycle by cycle, same number of frames, and
-# the logger's log holds every frame the nodes sent.
+# the logger's log holds every frame the nodes sent; the same through the
+# one-line launcher hil_bench --processes, truth columns included.
 # usage: udp_lockstep_matches_bench.sh BUILD_DIR WORK_DIR SCENARIO
 set -euo pipefail
 bin=$(cd "${1:?usage: udp_lockstep_matches_bench.sh BUILD_DIR WORK_DIR SCENARIO}" && pwd)/hil
@@ -37,4 +38,16 @@ else
   echo "controller signals identical to the in-process bench ($(($(wc -l < "$work/ctrl.csv") - 1)) cycles)"
 fi
 grep -q 'step_timeouts=0' "$work/ctrl.txt" || { echo "FAIL: a lockstep wait timed out"; status=1; }
+# The one-line launcher: hil_bench --processes writes the same signals.csv as
+# the in-process bench (truth from the plant process joined row by row); the
+# drive's torque travels as float32 to the plant, so that column agrees to 1e-4.
+"$bin/hil_bench" --processes --scenario "$scen" --out "$work/procs" > /dev/null
+if ! diff <(cut -d, -f1-8,10 "$work/procs/signals.csv") <(cut -d, -f1-8,10 "$work/bench/signals.csv") > "$work/diff2.txt"; then
+  echo "FAIL: hil_bench --processes signals differ from the in-process bench:"; head -n 10 "$work/diff2.txt"; status=1
+elif ! paste -d, <(cut -d, -f9 "$work/procs/signals.csv") <(cut -d, -f9 "$work/bench/signals.csv") |
+     awk -F, 'NR > 1 && ($1 - $2 > 1e-4 || $2 - $1 > 1e-4) { bad = 1 } END { exit bad }'; then
+  echo "FAIL: torque_actual differs by more than 1e-4 Nm"; status=1
+else
+  echo "hil_bench --processes: signals.csv (controller view and truth) identical to the in-process bench"
+fi
 exit $status
