@@ -14,6 +14,8 @@ void hil_drive_params_default(struct hil_drive_params *p)
     p->thermal_tau = 1.0;
     p->rpdo_timeout = 3;
     p->heartbeat_syncs = 84;
+    p->encoder_bits = 20;
+    p->velocity_from_encoder = 0;
 }
 
 static int params_ok(const struct hil_drive_params *p)
@@ -21,7 +23,8 @@ static int params_ok(const struct hil_drive_params *p)
     return p && p->T > 0.0 && isfinite(p->T) && p->delay >= 1 && p->delay <= HIL_DRIVE_MAX_DELAY &&
            p->tau_current >= 0.0 && isfinite(p->tau_current) && p->torque_rated > 0.0 &&
            p->torque_peak >= p->torque_rated && isfinite(p->torque_peak) && p->thermal_tau > 0.0 &&
-           isfinite(p->thermal_tau) && p->rpdo_timeout >= 1 && p->heartbeat_syncs >= 1;
+           isfinite(p->thermal_tau) && p->rpdo_timeout >= 1 && p->heartbeat_syncs >= 1 &&
+           p->encoder_bits >= 1 && p->encoder_bits <= 20 && p->velocity_from_encoder <= 1;
 }
 
 static void heartbeat(struct hil_drive *d, struct hil_out *out)
@@ -115,8 +118,8 @@ static void on_sync(struct hil_drive *d, struct hil_out *out)
     struct hil_can_frame f;
     struct hil_drive_tpdo1 t1;
     struct hil_drive_tpdo2 t2;
-    int64_t q;
-    double c, lim, a, tau_end;
+    int64_t q, counts, scale = (int64_t)1 << (20 - d->p.encoder_bits);
+    double c, lim, a, tau_end, vel, cpr = (double)((int64_t)1 << d->p.encoder_bits);
     unsigned i;
     int op = d->nmt == HIL_NMT_STATE_OPERATIONAL;
     int enabled = d->state == HIL_CIA402_OPERATION_ENABLED;
@@ -124,9 +127,13 @@ static void on_sync(struct hil_drive *d, struct hil_out *out)
     d->syncs++;
     if (op) {
         t1.statusword = hil_drive_statusword(d);
-        hil_co_quantize(d->theta * HIL_ENC_COUNTS_PER_REV / (2.0 * M_PI), 1.0, INT32_MIN, INT32_MAX, &q);
-        t1.position_inc = (int32_t)q;
-        hil_co_quantize(d->omega, HIL_VEL_LSB, INT32_MIN, INT32_MAX, &q);
+        /* encoder count (floor), in 2^20 wire units */
+        hil_co_quantize(floor(d->theta * cpr / (2.0 * M_PI)), 1.0, INT32_MIN / scale, INT32_MAX / scale, &counts);
+        t1.position_inc = (int32_t)(counts * scale);
+        vel = d->p.velocity_from_encoder ? (double)(counts - d->last_counts) * (2.0 * M_PI / cpr) / d->p.T
+                                         : d->omega;
+        d->last_counts = counts;
+        hil_co_quantize(vel, HIL_VEL_LSB, INT32_MIN, INT32_MAX, &q);
         t2.velocity_urads = (int32_t)q;
         hil_co_quantize(d->tau_act, HIL_TORQUE_LSB, INT32_MIN, INT32_MAX, &q);
         t2.torque_mnm = (int32_t)q;

@@ -255,6 +255,41 @@ static void test_drive_counts_and_ignores_malformed_frames(void **state)
     assert_true(d.cmd_latest == before.cmd_latest && d.theta == before.theta && d.syncs == before.syncs);
 }
 
+static void test_drive_encoder_counts_with_its_resolution_and_differences_velocity(void **state)
+{
+    struct hil_drive d;
+    struct hil_drive_params p;
+    struct hil_out o;
+    struct hil_can_frame f;
+    struct hil_drive_tpdo1 t1;
+    struct hil_drive_tpdo2 t2;
+    static const double angle[] = {0.001, 0.002, 0.0045, -0.001};
+    static const int32_t want[] = {0, 256, 512, -256}; /* floor(angle 4096 / 2 pi) * 2^8 */
+    int k;
+    (void)state;
+    hil_drive_params_default(&p);
+    p.encoder_bits = 12;
+    p.velocity_from_encoder = 1;
+    o.n = 0;
+    assert_int_equal(hil_drive_init(&d, &p, &o), HIL_OK);
+    f = nmt_start();
+    hil_drive_on_frame(&d, &f, &o);
+    for (k = 0; k < 4; k++) {
+        hil_co_rig_encode(&f, HIL_COB_RIG_MOTOR, angle[k], 123.0);
+        assert_int_equal(hil_drive_on_frame(&d, &f, &o), HIL_OK);
+        o.n = 0;
+        f = sync_frame();
+        hil_drive_on_frame(&d, &f, &o);
+        hil_co_drive_tpdo1_decode(find(&o, HIL_COB_TPDO1(HIL_NODE_DRIVE)), &t1);
+        hil_co_drive_tpdo2_decode(find(&o, HIL_COB_TPDO2(HIL_NODE_DRIVE)), &t2);
+        assert_int_equal(t1.position_inc, want[k]);
+        if (k > 0) /* one count = 2 pi / 4096 rad in one cycle */
+            assert_close(t2.velocity_urads * 1e-6, (want[k] - want[k - 1]) / 256.0 * (2.0 * M_PI / 4096) / p.T, 1e-6);
+    }
+    p.encoder_bits = 21;
+    assert_int_equal(hil_drive_init(&d, &p, &o), HIL_E_ARG);
+}
+
 /* Feeds the IMU one plant half-step (RIG_TIPPOS + RIG_TIP). */
 static void acquire(struct hil_imu *m, double rate, struct hil_out *o)
 {
@@ -528,6 +563,7 @@ int main(void)
         cmocka_unit_test(test_drive_limits_to_peak_then_rated_torque),
         cmocka_unit_test(test_drive_faults_and_sends_emcy_when_rpdos_stop),
         cmocka_unit_test(test_drive_counts_and_ignores_malformed_frames),
+        cmocka_unit_test(test_drive_encoder_counts_with_its_resolution_and_differences_velocity),
         cmocka_unit_test(test_imu_reading_leaves_four_acquisitions_after_sampling),
         cmocka_unit_test(test_imu_noise_is_seeded_and_quantized),
         cmocka_unit_test(test_imu_saturates_and_flags_out_of_range_rates),

@@ -15,7 +15,11 @@
  *      RIG_TORQUE(tau(t_k), tau(t_{k+1})) to the plant (ZOH on the command).
  * Torque is applied only in "operation enabled"; any other state commands 0.
  * No RPDO for rpdo_timeout SYNCs while enabled -> FAULT, EMCY 0x8250.
- * NMT start/stop/pre-op/reset are obeyed; heartbeat every heartbeat_syncs. */
+ * NMT start/stop/pre-op/reset are obeyed; heartbeat every heartbeat_syncs.
+ * Encoder effects: the position is counted (floor) with 2^encoder_bits counts
+ * per revolution and sent in the 2^20 wire unit; with velocity_from_encoder
+ * the velocity actual is the difference of two counted positions over T
+ * instead of the shaft's velocity. */
 #ifndef HIL_DRIVE_H
 #define HIL_DRIVE_H
 #include "hil/node.h"
@@ -40,6 +44,8 @@ struct hil_drive_params {
     double thermal_tau;    /* [s] > 0 */
     unsigned rpdo_timeout; /* SYNCs without RPDO before FAULT while enabled, >= 1 */
     unsigned heartbeat_syncs; /* heartbeat period in SYNCs, >= 1 */
+    unsigned encoder_bits; /* encoder resolution 2^bits counts/rev, 1..20 (effect; wire is 2^20) */
+    unsigned velocity_from_encoder; /* 1: velocity actual = encoder difference / T (effect) */
 };
 
 struct hil_drive {
@@ -55,12 +61,14 @@ struct hil_drive {
     int limiting;
     double theta, omega;                  /* shaft state from the plant */
     unsigned since_rpdo, since_heartbeat;
+    int64_t last_counts;                  /* encoder counts at the previous SYNC */
     uint64_t syncs, emcy_sent;
 };
 
 /* Defaults of the thesis set-up: T 1.2 ms, delay 4, tau_current 0.25 ms
  * (5 current-controller cycles of 50 us), rated 95.7 Nm, peak 251 Nm,
- * thermal_tau 1 s, rpdo_timeout 3, heartbeat every 84 SYNCs (~100 ms). */
+ * thermal_tau 1 s, rpdo_timeout 3, heartbeat every 84 SYNCs (~100 ms),
+ * 20-bit encoder, velocity from the shaft. */
 void hil_drive_params_default(struct hil_drive_params *p);
 
 /* Validates p and resets the node (NMT boot-up -> pre-operational, CiA 402
