@@ -24,6 +24,7 @@
 
 #include "FracCtrl.h"
 #include "plc_rt.h"
+#include "frac/ptable.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -44,8 +45,23 @@ typedef struct foloop_outputs {
     UINT StatusID;
 } foloop_outputs;
 
+/*
+ * Controller from a parameter table of `fracdesign table emit` (from a
+ * frac.design.fopi or frac.design.fopd document, docs/param_table_format.md):
+ *   table "fopi": Kp, Ki, alpha            -> Kp, Ki, Lambda (Kd = Delta = 0)
+ *   table "fopd": Kp (of C^), Kd, mu, delta -> Kp + delta, Kd, Mu, Delta (Ki = 0)
+ * into p->Pid; the realization, limits and Ts already in p are kept.
+ * Returns FRAC_OK, FRAC_E_NOT_FOUND (entry missing), FRAC_E_DIM (entry
+ * not 1 x 1), FRAC_E_FORMAT (table neither "fopi" nor "fopd"), FRAC_E_NULL.
+ */
+int foloop_params_from_table(foloop_params *p, const frac_ptable *t);
+
 typedef struct foloop {
     const foloop_params *par;
+    const void *table;       /* data object, or NULL when par is given directly */
+    UDINT table_size;
+    foloop_params loaded;    /* par with the table's controller */
+    struct ParTable partable;
     foloop_inputs in;
     foloop_outputs out;
     struct FOPID pid;
@@ -56,6 +72,14 @@ typedef struct foloop {
 /* Fills `prog` (name "FoLoop"); `par` must stay valid while it runs. */
 void foloop_program(foloop *f, plc_program *prog, const foloop_params *par, foloop_inputs *image_in,
                     foloop_outputs *image_out);
+
+/*
+ * As foloop_program, but the controller comes from the data object `table`
+ * (size bytes) at _INIT, validated by ParTable; `base` gives the rest. A
+ * table that fails leaves the program in fault with its StatusID (output 0).
+ */
+void foloop_program_table(foloop *f, plc_program *prog, const foloop_params *base, const void *table, UDINT size,
+                          foloop_inputs *image_in, foloop_outputs *image_out);
 
 void foloop_init(void *ctx);
 void foloop_cyclic(void *ctx);

@@ -63,7 +63,23 @@ static void rig_tick(void *ctx, uint64_t t_ns)
     }
 }
 
-static void run_loop(rig *r, const foloop_params *par)
+static unsigned char table[4096];
+static unsigned long table_size;
+
+static void read_table(const char *name)
+{
+    char path[512];
+    FILE *fp;
+    snprintf(path, sizeof path, "%s/tests/plc_blocks/fixtures/%s", FRAC_SOURCE_DIR, name);
+    fp = fopen(path, "rb");
+    assert_non_null(fp);
+    table_size = (unsigned long)fread(table, 1, sizeof table, fp);
+    fclose(fp);
+    assert_true(table_size > 52);
+}
+
+/* from_table: the controller comes from `table` (the data object). */
+static void run_loop_from(rig *r, const foloop_params *par, int from_table)
 {
     static foloop f;
     plc_program prog;
@@ -71,7 +87,11 @@ static void run_loop(rig *r, const foloop_params *par)
     plc_rt_config cfg;
     plc_rt rt;
     char err[256];
-    foloop_program(&f, &prog, par, &r->in_img, &r->out_img);
+    if (from_table) {
+        foloop_program_table(&f, &prog, par, table, (UDINT)table_size, &r->in_img, &r->out_img);
+    } else {
+        foloop_program(&f, &prog, par, &r->in_img, &r->out_img);
+    }
     reg[0] = &prog;
     assert_int_equal(plc_rt_config_parse(&cfg,
         "[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\n"
@@ -80,11 +100,70 @@ static void run_loop(rig *r, const foloop_params *par)
     rt.tick_hook = rig_tick;
     rt.tick_ctx = r;
     assert_int_equal(plc_rt_start(&rt), PLC_RT_OK);
-    assert_false(r->out_img.Error);
     assert_int_equal(plc_rt_run_sim(&rt, 420000), PLC_RT_OK); /* 42 s */
+    plc_rt_stop(&rt);
+}
+
+static void run_loop(rig *r, const foloop_params *par)
+{
+    run_loop_from(r, par, 0);
     assert_false(r->out_img.Error);
     assert_int_equal(r->out_img.StatusID, fracSTAT_OK);
-    plc_rt_stop(&rt);
+}
+
+/* Realization, limits and Ts of the program; the gains come from a table. */
+static void base_params(foloop_params *par)
+{
+    memset(par, 0, sizeof *par);
+    par->Pid.B = 1.0f;
+    par->Pid.C = 1.0f;
+    par->Pid.Y_min = -10.0f;
+    par->Pid.Y_max = 10.0f;
+    par->Pid.Ts = (REAL)TS;
+    par->Pid.Method = fracFO_OUSTALOUP;
+    par->Pid.Wb = 1e-4f;
+    par->Pid.Wh = 1e3f;
+    par->Pid.N = 8;
+}
+
+static void test_fo_loop_runs_the_fracdesign_tables(void **state)
+{
+    static rig r;
+    foloop_params par;
+    (void)state;
+    /* fracdesign tune fopi (omega_c = 6.36) -> table emit: the same loop as (52) */
+    read_table("fopi_seed001.bin");
+    rig_init(&r);
+    base_params(&par);
+    run_loop_from(&r, &par, 1);
+    print_message("fopi table: y(40 s after the step) = %.4f\n", r.y_at_41);
+    assert_false(r.out_img.Error);
+    assert_close(r.y_at_41, 0.909, 0.02);
+    /* fracdesign tune fopd (omega_c = 6.86, spec-consistent reading (a)):
+     * notes 001 8.3: overshoot 95.1 %, final value 1 */
+    read_table("fopd_seed001.bin");
+    rig_init(&r);
+    base_params(&par);
+    run_loop_from(&r, &par, 1);
+    print_message("fopd table: peak %.3f, y(40 s after the step) = %.4f\n", r.max_abs_y, r.y_at_41);
+    assert_false(r.out_img.Error);
+    assert_close(r.max_abs_y, 1.951, 0.05);
+    assert_close(r.y_at_41, 1.0, 0.01);
+}
+
+static void test_fo_loop_refuses_a_corrupted_table(void **state)
+{
+    static rig r;
+    foloop_params par;
+    (void)state;
+    read_table("fopi_seed001.bin");
+    table[table_size - 10] ^= 0x40;
+    rig_init(&r);
+    base_params(&par);
+    run_loop_from(&r, &par, 1);
+    assert_true(r.out_img.Error);
+    assert_int_equal(r.out_img.StatusID, fracERR_TABLE_CRC);
+    assert_true(r.max_abs_y == 0.0);
 }
 
 static void test_fo_pi_52_settles_a_step_without_error(void **state)
@@ -177,6 +256,8 @@ int main(void)
         cmocka_unit_test(test_fo_pi_52_settles_a_step_without_error),
         cmocka_unit_test(test_fo_pd_53_with_positive_feedback_settles_a_step),
         cmocka_unit_test(test_fo_loop_bad_parameters_keep_the_output_at_zero),
+        cmocka_unit_test(test_fo_loop_runs_the_fracdesign_tables),
+        cmocka_unit_test(test_fo_loop_refuses_a_corrupted_table),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
