@@ -188,8 +188,9 @@ static int run_processes(const struct app_opts *o, int realtime)
     unsigned port = 41000u + (unsigned)(getpid() % 1000) * 8u;
     double t0;
     if (o->cfg.frame_loss > 0.0 || o->cfg.imu_dropout_end > o->cfg.imu_dropout_start ||
-        o->cfg.drive_dropout_end > o->cfg.drive_dropout_start) {
-        fprintf(stderr, "hil_bench: frame_loss and the dropouts are effects of the in-process bus; "
+        o->cfg.drive_dropout_end > o->cfg.drive_dropout_start ||
+        o->cfg.drive_busoff_end > o->cfg.drive_busoff_start) {
+        fprintf(stderr, "hil_bench: frame_loss, the dropouts and bus-off are effects of the in-process bus; "
                         "they are not available with --processes\n");
         return 2;
     }

@@ -63,6 +63,20 @@ static void send_emcy(struct hil_ctrl *c, uint16_t code, struct hil_out *out)
 
 static double clamp(double x, double m) { return x > m ? m : (x < -m ? -m : x); }
 
+/* CiA 402 device control driven by the reported state: fault -> fault reset
+ * (bit 7 edge), switch on disabled -> shutdown, ready -> switch on, switched
+ * on / enabled -> enable operation. Before any TPDO (statusword 0): shutdown. */
+static uint16_t controlword_for(uint16_t sw)
+{
+    if ((sw & 0x004Fu) == 0x0008u)
+        return HIL_CW_FAULT_RESET;
+    if ((sw & 0x004Fu) == 0x0040u || sw == 0)
+        return HIL_CW_SHUTDOWN;
+    if ((sw & 0x006Fu) == 0x0021u)
+        return HIL_CW_SWITCH_ON;
+    return HIL_CW_ENABLE_OP;
+}
+
 /* PD test law with the node's IMU watchdog and fault ramp (hil/ctrl.h). */
 static double pd_law(struct hil_ctrl *c, uint64_t k, int enabled, double ref, double refd, struct hil_out *out)
 {
@@ -125,7 +139,7 @@ static void run_law(struct hil_ctrl *c, struct hil_out *out)
         u = pd_law(c, k, enabled, ref, refd, out);
     }
     u = clamp(u, c->p.torque_max);
-    r.controlword = k == 0 ? HIL_CW_SHUTDOWN : (k == 1 ? HIL_CW_SWITCH_ON : HIL_CW_ENABLE_OP);
+    r.controlword = controlword_for(c->statusword);
     hil_co_quantize(u, HIL_TORQUE_LSB, INT32_MIN, INT32_MAX, &q);
     r.torque_mnm = (int32_t)q;
     if (hil_co_drive_rpdo_encode(&f, &r) == HIL_OK)

@@ -70,6 +70,16 @@ int hil_drive_init(struct hil_drive *d, const struct hil_drive_params *p, struct
     return HIL_OK;
 }
 
+int hil_drive_set_bus_off(struct hil_drive *d, int off, struct hil_out *out)
+{
+    if (!d || !out)
+        return HIL_E_ARG;
+    if (d->bus_off && !off)
+        emcy(d, HIL_EMCY_BUS_OFF_RECOVERED, out);
+    d->bus_off = off != 0;
+    return HIL_OK;
+}
+
 uint16_t hil_drive_statusword(const struct hil_drive *d)
 {
     static const uint16_t sw[] = {0x0040, 0x0021, 0x0023, 0x0027, 0x0007, 0x0008};

@@ -25,7 +25,8 @@ static const struct key keys[] = {
     D("duration", duration), D("frame_loss", frame_loss), Q("bus_seed", bus_seed),
     U("inject_every", inject_every), D("imu_dropout_start", imu_dropout_start),
     D("imu_dropout_end", imu_dropout_end), D("drive_dropout_start", drive_dropout_start),
-    D("drive_dropout_end", drive_dropout_end),
+    D("drive_dropout_end", drive_dropout_end), D("drive_busoff_start", drive_busoff_start),
+    D("drive_busoff_end", drive_busoff_end),
     U("drive.delay", drive.delay), D("drive.tau_current", drive.tau_current),
     D("drive.torque_rated", drive.torque_rated), D("drive.torque_peak", drive.torque_peak),
     D("drive.thermal_tau", drive.thermal_tau), U("drive.rpdo_timeout", drive.rpdo_timeout),
@@ -188,6 +189,14 @@ enum { FROM_DRIVE, FROM_IMU, FROM_PLANT, FROM_CTRL, FROM_FOREIGN, NODES = 4 };
 
 static int is_pdo(uint32_t id) { return id >= 0x180u && id < 0x580u; }
 
+/* The rig-internal frames model wiring, not CAN traffic: no bus effect. */
+static int is_rig(uint32_t id) { return id >= HIL_COB_RIG_TORQUE && id <= HIL_COB_RIG_IMU_DONE; }
+
+static int drive_bus_off(const struct hil_rig *r, double now)
+{
+    return now >= r->cfg.drive_busoff_start && now < r->cfg.drive_busoff_end;
+}
+
 static int enqueue(struct hil_rig *r, const struct hil_out *out, int from)
 {
     double now = (double)(r->ctrl.cycle ? r->ctrl.cycle - 1 : 0) * r->cfg.ctrl.T;
@@ -195,9 +204,10 @@ static int enqueue(struct hil_rig *r, const struct hil_out *out, int from)
     for (i = 0; i < out->n; i++) {
         int at;
         r->st.frames_sent++;
-        if (is_pdo(out->f[i].id) &&
+        if ((from == FROM_DRIVE && !is_rig(out->f[i].id) && drive_bus_off(r, now)) ||
+            (is_pdo(out->f[i].id) &&
             ((from == FROM_IMU && now >= r->cfg.imu_dropout_start && now < r->cfg.imu_dropout_end) ||
-             (from == FROM_DRIVE && now >= r->cfg.drive_dropout_start && now < r->cfg.drive_dropout_end))) {
+             (from == FROM_DRIVE && now >= r->cfg.drive_dropout_start && now < r->cfg.drive_dropout_end)))) {
             r->st.frames_lost++;
             continue;
         }
@@ -271,6 +281,10 @@ static int drain(struct hil_rig *r)
             if (n == from)
                 continue;
             out.n = 0;
+            /* bus-off: the drive hears nothing; its own cycle (SYNC-locked
+             * here) and the wiring (RIG_*) go on */
+            if (n == FROM_DRIVE && r->drive.bus_off && f.id != HIL_COB_SYNC && !is_rig(f.id))
+                continue;
             if (n == FROM_DRIVE)
                 hil_drive_on_frame(&r->drive, &f, &out);
             else if (n == FROM_IMU)
@@ -313,7 +327,20 @@ int hil_rig_cycle(struct hil_rig *r)
     tip_rate = r->plant.omega;
     out.n = 0;
     hil_ctrl_tick(&r->ctrl, &out);
-    if ((st = enqueue(r, &out, FROM_CTRL)) != HIL_OK || (st = drain(r)) != HIL_OK)
+    if ((st = enqueue(r, &out, FROM_CTRL)) != HIL_OK)
+        return st;
+    {
+        /* bus-off starts or ends with this cycle (enqueue's time is now t_k) */
+        int off = drive_bus_off(r, (double)(r->ctrl.cycle - 1) * r->cfg.ctrl.T);
+        if (off != r->drive.bus_off) {
+            out.n = 0;
+            hil_drive_set_bus_off(&r->drive, off, &out);
+            r->st.bus_off_episodes += (uint64_t)off;
+            if ((st = enqueue(r, &out, FROM_DRIVE)) != HIL_OK)
+                return st;
+        }
+    }
+    if ((st = drain(r)) != HIL_OK)
         return st;
     if (r->cfg.inject_every && r->ctrl.cycle % r->cfg.inject_every == 0) {
         inject(r);
@@ -448,6 +475,8 @@ int hil_rig_write_meta(const struct hil_rig *r, FILE *f, double wall_s)
     if (!r || !f)
         return HIL_E_ARG;
     hil_rig_meta_begin(&r->cfg, "lockstep", f);
+    fprintf(f, "  \"bus_off\": {\"drive\": [%.17g, %.17g], \"episodes\": %llu},\n",
+            r->cfg.drive_busoff_start, r->cfg.drive_busoff_end, (unsigned long long)r->st.bus_off_episodes);
     fprintf(f, "  \"counts\": {\"cycles\": %llu, \"frames_sent\": %llu, \"frames_lost\": %llu, "
                "\"frames_delivered\": %llu, \"frames_logged\": %llu, \"injected\": %llu, "
                "\"missed_inputs\": %llu, \"imu_readings\": %llu, \"faults\": %llu, \"emcy\": %llu},\n",

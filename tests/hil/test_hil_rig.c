@@ -6,6 +6,7 @@
 #include <string.h>
 #include "frac_test.h"
 #include "hil/candump.h"
+#include "hil/canopen.h"
 #include "hil/rig.h"
 
 static struct hil_rig rig;
@@ -167,6 +168,42 @@ static void test_imu_dropout_trips_watchdog_emcy_and_recovers(void **state)
     fclose(csv);
 }
 
+static void test_drive_bus_off_faults_recovers_with_emcy_and_reenables(void **state)
+{
+    struct hil_rig_config c;
+    FILE *log = tmpfile();
+    char line[256], iface[HIL_CANDUMP_IFACE_MAX];
+    struct hil_can_frame f;
+    double t;
+    long recovered = 0, timeouts = 0, tpdo_in_window = 0;
+    (void)state;
+    hil_rig_config_default(&c);
+    c.duration = 1.2;
+    c.drive_busoff_start = 0.3;
+    c.drive_busoff_end = 0.35;
+    run(&c, log, NULL);
+    rewind(log);
+    while (fgets(line, sizeof line, log)) {
+        assert_int_equal(hil_candump_parse(line, &t, iface, &f), HIL_OK);
+        if (f.id == 0x081 && hil_get_u16(f.data) == 0x8140)
+            recovered++;
+        if (f.id == 0x081 && hil_get_u16(f.data) == 0x8250)
+            timeouts++;
+        if (f.id == 0x181 && t >= 0.3 && t < 0.35 - 1e-9)
+            tpdo_in_window++;
+    }
+    assert_int_equal(recovered, 1);
+    assert_int_equal(timeouts, 0); /* raised while bus-off: never reached the bus */
+    assert_int_equal(tpdo_in_window, 0);
+    assert_int_equal(rig.st.bus_off_episodes, 1);
+    assert_true(rig.ctrl.missed_inputs >= 40); /* 50 ms of cycles without TPDOs */
+    assert_true(rig.st.frames_lost > 0);
+    /* the controller reset the fault and re-enabled the drive */
+    assert_int_equal(rig.drive.state, HIL_CIA402_OPERATION_ENABLED);
+    assert_close(rig.plant.theta, c.ctrl.move, 0.01);
+    fclose(log);
+}
+
 static void test_scenario_file_sets_keys_and_reports_bad_lines(void **state)
 {
     struct hil_rig_config c;
@@ -227,6 +264,7 @@ int main(void)
         cmocka_unit_test(test_malformed_frames_counted_and_ignored_by_every_node),
         cmocka_unit_test(test_one_percent_frame_loss_keeps_loop_stable),
         cmocka_unit_test(test_imu_dropout_trips_watchdog_emcy_and_recovers),
+        cmocka_unit_test(test_drive_bus_off_faults_recovers_with_emcy_and_reenables),
         cmocka_unit_test(test_scenario_file_sets_keys_and_reports_bad_lines),
         cmocka_unit_test(test_metadata_records_scenario_seeds_and_counts),
     };

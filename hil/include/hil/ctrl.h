@@ -13,7 +13,10 @@
  * with r(t) the cos^2 point-to-point move of amplitude `move` [rad] over
  * `move_time` [s] starting at `move_start` [s].
  *
- * Drive enabling per CiA 402: controlword 0x06, 0x07, then 0x0F from cycle 3.
+ * Drive enabling per CiA 402, driven by the reported statusword: 0x06 in
+ * "switch on disabled", 0x07 in "ready to switch on", 0x0F afterwards, and a
+ * fault reset (0x80) when the drive reports a fault, so the drive is
+ * re-enabled after e.g. an RPDO timeout or a bus-off episode.
  * IMU watchdog: when no new IMU reading (sequence number) arrived for more
  * than imu_timeout cycles while enabled, the node enters its fault reaction:
  * EMCY 0x7300 once, and the torque command ramps linearly from its last value

@@ -63,6 +63,7 @@ struct hil_drive {
     unsigned since_rpdo, since_heartbeat;
     int64_t last_counts;                  /* encoder counts at the previous SYNC */
     uint64_t syncs, emcy_sent;
+    int bus_off;
 };
 
 /* Defaults of the thesis set-up: T 1.2 ms, delay 4, tau_current 0.25 ms
@@ -80,6 +81,13 @@ int hil_drive_init(struct hil_drive *d, const struct hil_drive_params *p, struct
  * frames of other nodes (counted in rx.other when they are in the
  * dictionary), or the negative validation code (frame ignored). */
 int hil_drive_on_frame(struct hil_drive *d, const struct hil_can_frame *f, struct hil_out *out);
+
+/* Bus-off episode of the drive's CAN controller (the rig's bus-off effect):
+ * off = 1 when it goes bus-off, 0 when it has recovered; on recovery the
+ * drive sends EMCY 0x8140 (appended to out). The rig stops its transmissions
+ * and receptions meanwhile; the drive keeps running on its own cycle.
+ * Returns HIL_OK or HIL_E_ARG. */
+int hil_drive_set_bus_off(struct hil_drive *d, int off, struct hil_out *out);
 
 /* CiA 402 statusword of the current state. */
 uint16_t hil_drive_statusword(const struct hil_drive *d);

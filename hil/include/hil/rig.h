@@ -17,7 +17,10 @@
  * cycles (the drive RPDO with DLC 5 and the unknown identifier 0x555), which
  * every node must count and ignore. imu_dropout_start/end: every IMU PDO
  * sent in that window of simulated time is lost (the "IMU frames stop" fault);
- * drive_dropout_start/end the same for the drive's TPDOs. */
+ * drive_dropout_start/end the same for the drive's TPDOs. drive_busoff_start/
+ * end: the drive's CAN controller is bus-off: nothing it sends reaches the bus
+ * and it hears nothing but SYNC (its own cycle stays locked to the bus clock)
+ * and the RIG_* wiring; on recovery it sends EMCY 0x8140. */
 #ifndef HIL_RIG_H
 #define HIL_RIG_H
 #include <stdio.h>
@@ -39,6 +42,7 @@ struct hil_rig_config {
     unsigned inject_every;     /* 0: off */
     double imu_dropout_start, imu_dropout_end; /* IMU PDOs lost in [start, end) [s] */
     double drive_dropout_start, drive_dropout_end; /* drive TPDOs lost in [start, end) [s] */
+    double drive_busoff_start, drive_busoff_end;   /* drive bus-off in [start, end) [s] */
     struct hil_drive_params drive;
     struct hil_imu_params imu;
     struct hil_plant_params plant_p;
@@ -47,7 +51,7 @@ struct hil_rig_config {
 
 struct hil_rig_stats {
     uint64_t cycles, frames_sent, frames_lost, frames_delivered, frames_logged;
-    uint64_t injected;
+    uint64_t injected, bus_off_episodes;
 };
 
 struct hil_rig {
@@ -72,7 +76,7 @@ void hil_rig_config_default(struct hil_rig_config *c);
 /* Reads "key = value" lines ('#' comments) into c, on top of what it holds.
  * Keys: T (sets the cycle of every node), duration, plant, frame_loss,
  * bus_seed, inject_every, imu_dropout_start, imu_dropout_end, drive_dropout_start,
- * drive_dropout_end, ctrl.law, and the fields
+ * drive_dropout_end, drive_busoff_start, drive_busoff_end, ctrl.law, and the fields
  * of the node parameter structs as drive.*, imu.*, plant.*, ctrl.*. Returns HIL_OK, HIL_E_IO, or HIL_E_FORMAT with *line_no set to
  * the first bad line (unknown key, bad number). */
 int hil_rig_config_load(struct hil_rig_config *c, const char *path, int *line_no);
