@@ -1,7 +1,10 @@
 #!/usr/bin/python3
 """Host-side checks of the vcan-in-QEMU run (run_vcan_qemu.sh).
 
-usage: check_vcan_run.py CONSOLE_TXT FRAMES_LOG_HEAD SCENARIO
+usage: check_vcan_run.py CONSOLE_TXT FRAMES_LOG_HEAD SCENARIO DBC
+
+Run with the test venv's python (cantools): the head of the log recorded on
+vcan0 is decoded with the DBC as an independent client.
 
 Frame accounting over the real SocketCAN path: every frame any node sent
 appears exactly once in the candump-format log; SYNC and RPDO counts equal the
@@ -19,7 +22,7 @@ def fields(line):
 
 
 def main():
-    console, log_path, scenario_path = sys.argv[1:4]
+    console, log_path, scenario_path, dbc_path = sys.argv[1:5]
     # The serial console may put terminal escape codes before a marker.
     text = [l[l.index("HIL_"):] if "HIL_" in l else l
             for l in open(console, encoding="utf-8", errors="replace").read().splitlines()]
@@ -71,6 +74,24 @@ def main():
         m = LINE.match(line.rstrip("\n"))
         head.append(m is not None)
     check(len(head) > 0 and all(head), "the %d log lines shown are candump format" % len(head))
+    import cantools
+    import cantools.logreader
+    db = cantools.database.load_file(dbc_path)
+    decoded, sync_ok, expect = 0, True, 1
+    with open(log_path) as f:
+        for fr in cantools.logreader.Parser(f):
+            if fr.frame_id == 0x555:  # the injected unknown identifier
+                continue
+            msg = db.get_message_by_frame_id(fr.frame_id)
+            if msg.name == "DRIVE_RPDO1" and len(fr.data) != 6:  # the injected wrong-DLC RPDO
+                continue
+            sig = db.decode_message(fr.frame_id, fr.data)
+            if msg.name == "SYNC":
+                sync_ok &= sig["sync_counter"] == expect
+                expect = expect % 240 + 1
+            decoded += 1
+    check(decoded > 250 and sync_ok,
+          "cantools %s decoded %d frames recorded on vcan0, SYNC counters in sequence" % (cantools.__version__, decoded))
     check(bad_lines == 0, "every log line in the guest matched the candump format (%s bad)" % bad_lines)
     logged = int(stats["candump"]["logged"])
     check(loglines == logged, "log lines %s == frames the logger counted %d" % (loglines, logged))

@@ -7,7 +7,7 @@
 # closed-loop scenario (controller, drive, IMU, plant nodes) and the rig's
 # candump-format logger. Checks the result marker and the frame counts.
 #
-# usage: run_vcan_qemu.sh BUILD_DIR WORK_DIR
+# usage: run_vcan_qemu.sh BUILD_DIR WORK_DIR [PYTHON_WITH_CANTOOLS]
 set -euo pipefail
 build=$(cd "${1:?usage: run_vcan_qemu.sh BUILD_DIR WORK_DIR}" && pwd)
 work=${2:?usage: run_vcan_qemu.sh BUILD_DIR WORK_DIR}
@@ -90,4 +90,6 @@ if grep -q 'HIL_QEMU_ERROR' "$work/console.txt"; then grep 'HIL_QEMU_ERROR' "$wo
 sed -n '/HIL_LOG_BEGIN$/,/^HIL_LOG_END$/p' "$work/console.txt" | sed '1d;$d' > "$work/frames.log"
 grep -E 'HIL_(STATS|JITTER|CTRL|QEMU)' "$work/console.txt"
 
-exec /usr/bin/python3 "$here/check_vcan_run.py" "$work/console.txt" "$work/frames.log" "$here/vcan_scenario.txt"
+py=${3:-/usr/bin/python3}
+exec "$py" "$here/check_vcan_run.py" "$work/console.txt" "$work/frames.log" "$here/vcan_scenario.txt" \
+  "$src/hil/fracarm.dbc"
