@@ -141,9 +141,9 @@ int frac_cfe_init(frac_cfe *f, const frac_cfe_params *p, frac_real *storage, siz
 
 int frac_cfe_step(frac_cfe *f, frac_real x, frac_real *y)
 {
-    if (f == NULL || y == NULL) return FRAC_E_NULL;
+    if (f == NULL) return FRAC_E_NULL;
     if (!f->ready) return FRAC_E_NOT_INIT;
-    return frac_sos_step(&f->sos, x, y);
+    return frac_sos_step(&f->sos, x, y); /* checks y and x */
 }
 
 int frac_cfe_reset(frac_cfe *f)

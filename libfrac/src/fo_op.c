@@ -20,23 +20,23 @@ int frac_fo_init(frac_fo *op, const frac_fo_params *p, frac_real *storage, size_
     frac_oustaloup_params op_;
     frac_cfe cfe;
     frac_cfe_params cp;
-    int st;
+    int st, kind;
     if (op == NULL || p == NULL) return FRAC_E_NULL;
     op->ready = 0;
+    op->kind = 0;
     if (p->method < FRAC_FO_GL || p->method > FRAC_FO_CFE_ALALAOUI) return FRAC_E_PARAM;
     if (!FRAC_ISFINITE(p->order)) return FRAC_E_ORDER;
     if (!FRAC_ISFINITE(p->ts) || p->ts <= FRAC_R(0.0)) return FRAC_E_TS;
     op->p = *p;
     op->last = FRAC_R(0.0);
     if (p->order == FRAC_R(0.0)) {
-        op->kind = 0;
         op->ready = 1;
         return FRAC_OK;
     }
     switch (p->method) { /* each init validates its parameters, then the storage */
     case FRAC_FO_GL:
         st = frac_gl_init(&op->gl, p->order, p->ts, p->memory, storage, len);
-        op->kind = 1;
+        kind = 1;
         break;
     case FRAC_FO_OUSTALOUP:
     case FRAC_FO_OUSTALOUP_REFINED:
@@ -48,7 +48,7 @@ int frac_fo_init(frac_fo *op, const frac_fo_params *p, frac_real *storage, size_
         op_.refined = p->method == FRAC_FO_OUSTALOUP_REFINED;
         st = frac_oustaloup_init(&ou, &op_, storage, len);
         op->sos = ou.sos;
-        op->kind = 2;
+        kind = 2;
         break;
     default:
         cp.order = p->order;
@@ -57,31 +57,30 @@ int frac_fo_init(frac_fo *op, const frac_fo_params *p, frac_real *storage, size_
         cp.rule = p->method == FRAC_FO_CFE_TUSTIN ? FRAC_CFE_TUSTIN : FRAC_CFE_ALALAOUI;
         st = frac_cfe_init(&cfe, &cp, storage, len);
         op->sos = cfe.sos;
-        op->kind = 2;
+        kind = 2;
         break;
     }
     if (st != FRAC_OK) return st;
+    op->kind = kind;
     op->ready = 1;
     return FRAC_OK;
 }
 
 int frac_fo_step(frac_fo *op, frac_real x, frac_real *y)
 {
-    int st;
-    if (op == NULL || y == NULL) return FRAC_E_NULL;
+    if (op == NULL) return FRAC_E_NULL;
+    /* kind is nonzero only after a successful init; the realization checks y and x */
+    if (op->kind == 2) return frac_sos_step(&op->sos, x, y);
+    if (op->kind == 1) return frac_gl_step(&op->gl, x, y);
+    if (y == NULL) return FRAC_E_NULL;
     if (!op->ready) return FRAC_E_NOT_INIT;
     if (!FRAC_ISFINITE(x)) {
         *y = op->last;
         return FRAC_E_NONFINITE;
     }
-    if (op->kind == 1) st = frac_gl_step(&op->gl, x, y);
-    else if (op->kind == 2) st = frac_sos_step(&op->sos, x, y);
-    else {
-        *y = x;
-        st = FRAC_OK;
-    }
-    if (st == FRAC_OK) op->last = *y;
-    return st;
+    op->last = x;
+    *y = x;
+    return FRAC_OK;
 }
 
 int frac_fo_reset(frac_fo *op)
@@ -102,10 +101,8 @@ int frac_fo_set_steady(frac_fo *op, frac_real x)
     if (!FRAC_ISFINITE(x)) return FRAC_E_NONFINITE;
     if (op->kind == 1) {
         st = frac_gl_set_history(&op->gl, x);
-        if (st == FRAC_OK) op->last = op->gl.last;
     } else if (op->kind == 2) {
         st = frac_sos_set_steady(&op->sos, x);
-        if (st == FRAC_OK) op->last = op->sos.last;
     } else {
         op->last = x;
     }
@@ -132,7 +129,10 @@ frac_real frac_fo_feedthrough(const frac_fo *op)
 
 frac_real frac_fo_output(const frac_fo *op)
 {
-    return (op != NULL && op->ready) ? op->last : FRAC_R(0.0);
+    if (op == NULL || !op->ready) return FRAC_R(0.0);
+    if (op->kind == 1) return op->gl.last;
+    if (op->kind == 2) return op->sos.last;
+    return op->last;
 }
 
 int frac_fo_freqresp(const frac_fo *op, frac_real w, frac_real *re, frac_real *im)

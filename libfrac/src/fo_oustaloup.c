@@ -101,9 +101,9 @@ int frac_oustaloup_init(frac_oustaloup *o, const frac_oustaloup_params *p, frac_
 
 int frac_oustaloup_step(frac_oustaloup *o, frac_real x, frac_real *y)
 {
-    if (o == NULL || y == NULL) return FRAC_E_NULL;
+    if (o == NULL) return FRAC_E_NULL;
     if (!o->ready) return FRAC_E_NOT_INIT;
-    return frac_sos_step(&o->sos, x, y);
+    return frac_sos_step(&o->sos, x, y); /* checks y and x */
 }
 
 int frac_oustaloup_reset(frac_oustaloup *o)

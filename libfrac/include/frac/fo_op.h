@@ -53,7 +53,7 @@ typedef struct frac_fo {
     frac_gl gl;      /* FRAC_FO_GL */
     frac_sos sos;    /* Oustaloup and CFE */
     frac_real last;  /* identity (order 0): last output */
-    int kind;        /* 0 identity, 1 GL, 2 SOS */
+    int kind;        /* 0 identity (or not initialised), 1 GL, 2 SOS */
     int ready;
 } frac_fo;
 
