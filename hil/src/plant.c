@@ -35,7 +35,10 @@ int hil_plant_init(struct hil_plant *pl, const struct hil_plant_params *p)
         if (!pos(p->J) || !(p->b >= 0.0) || !isfinite(p->b))
             return HIL_E_ARG;
     } else if (p->model == HIL_PLANT_TWOMASS) {
-        if (!pos(p->I_M) || !pos(p->I_L) || !pos(p->c_s) || frac_friction_init(&fr, &p->friction) != FRAC_OK)
+        if (!pos(p->I_M) || !pos(p->I_L) || !pos(p->c_s) || frac_friction_init(&fr, &p->friction) != FRAC_OK ||
+            !(p->backlash >= 0.0) || !isfinite(p->backlash) || !(p->extra_inertia >= 0.0) ||
+            !isfinite(p->extra_inertia) || (p->extra_inertia > 0.0 && (!pos(p->extra_hz) || !(p->extra_zeta >= 0.0) ||
+                                                                         !isfinite(p->extra_zeta))))
             return HIL_E_ARG;
     } else {
         return HIL_E_ARG;
@@ -47,7 +50,8 @@ int hil_plant_init(struct hil_plant *pl, const struct hil_plant_params *p)
     return HIL_OK;
 }
 
-/* State x = [theta, omega, psi, psi'] (rigid: psi == theta); dx = f(x, tau). */
+/* State x = [theta, omega, psi, psi', q_e, q_e'] (rigid: psi == theta,
+ * q_e == 0); dx = f(x, tau). */
 static void deriv(struct hil_plant *pl, const double *x, double tau, double *dx)
 {
     if (pl->p.model == HIL_PLANT_RIGID) {
@@ -56,44 +60,55 @@ static void deriv(struct hil_plant *pl, const double *x, double tau, double *dx)
         dx[1] = a;
         dx[2] = x[1];
         dx[3] = a;
+        dx[4] = dx[5] = 0.0;
     } else {
         frac_real tf = 0;
-        double spring = pl->p.c_s * (x[0] - x[2]);
+        double delta = x[0] - x[2], h = 0.5 * pl->p.backlash, spring, extra = 0.0, k_e, d_e;
+        double dz = delta > h ? delta - h : (delta < -h ? delta + h : 0.0);
+        spring = pl->p.c_s * dz;
         frac_friction_eval(&pl->fric, (frac_real)x[1], &tf);
+        if (pl->p.extra_inertia > 0.0) {
+            double w = 2.0 * M_PI * pl->p.extra_hz;
+            k_e = pl->p.extra_inertia * w * w;
+            d_e = 2.0 * pl->p.extra_zeta * sqrt(k_e * pl->p.extra_inertia);
+            extra = k_e * x[4] + d_e * x[5];
+        }
         dx[0] = x[1];
         dx[1] = (tau - spring - (double)tf) / pl->p.I_M;
         dx[2] = x[3];
-        dx[3] = spring / pl->p.I_L;
+        dx[3] = (spring + extra) / pl->p.I_L;
+        dx[4] = x[5];
+        dx[5] = pl->p.extra_inertia > 0.0 ? -extra / pl->p.extra_inertia - dx[3] : 0.0;
     }
 }
 
 /* RK4 over [0, h] with torque tau(s) = tau0 + slope * s. */
 static void rk4(struct hil_plant *pl, double h, double tau0, double slope, unsigned n)
 {
-    double x[4] = {pl->theta, pl->omega, pl->psi, pl->psi_d}, y[4], k1[4], k2[4], k3[4], k4[4];
+    double *x = pl->x, y[6], k1[6], k2[6], k3[6], k4[6];
     double dt = h / n, s = 0.0;
     unsigned i;
     int j;
     for (i = 0; i < n; i++, s += dt) {
         deriv(pl, x, tau0 + slope * s, k1);
-        for (j = 0; j < 4; j++)
+        for (j = 0; j < 6; j++)
             y[j] = x[j] + 0.5 * dt * k1[j];
         deriv(pl, y, tau0 + slope * (s + 0.5 * dt), k2);
-        for (j = 0; j < 4; j++)
+        for (j = 0; j < 6; j++)
             y[j] = x[j] + 0.5 * dt * k2[j];
         deriv(pl, y, tau0 + slope * (s + 0.5 * dt), k3);
-        for (j = 0; j < 4; j++)
+        for (j = 0; j < 6; j++)
             y[j] = x[j] + dt * k3[j];
         deriv(pl, y, tau0 + slope * (s + dt), k4);
-        for (j = 0; j < 4; j++)
+        for (j = 0; j < 6; j++)
             x[j] += dt / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j]);
     }
     deriv(pl, x, tau0 + slope * h, k1);
     pl->theta = x[0];
     pl->omega = x[1];
-    pl->psi = x[2];
-    pl->psi_d = x[3];
-    pl->psi_dd = k1[3];
+    pl->psi = x[2] + x[4];
+    pl->psi_d = x[3] + x[5];
+    pl->psi_dd = k1[3] + k1[5];
 }
 
 static void emit(uint32_t cob, double a, double b, struct hil_out *out)

@@ -43,7 +43,9 @@ static const struct key keys[] = {
     R("plant.fric_b1", plant_p.friction.b1), R("plant.fric_b0", plant_p.friction.b0),
     R("plant.fric_b1s", plant_p.friction.b1s), R("plant.fric_b2s", plant_p.friction.b2s),
     R("plant.fric_b3s", plant_p.friction.b3s), R("plant.fric_v_s", plant_p.friction.v_s),
-    R("plant.fric_delta", plant_p.friction.delta),
+    R("plant.fric_delta", plant_p.friction.delta), D("plant.backlash", plant_p.backlash),
+    D("plant.extra_inertia", plant_p.extra_inertia), D("plant.extra_hz", plant_p.extra_hz),
+    D("plant.extra_zeta", plant_p.extra_zeta),
     U("plant.substeps", plant_p.substeps),
     D("ctrl.kp", ctrl.kp), D("ctrl.kd", ctrl.kd), D("ctrl.k_tip", ctrl.k_tip),
     D("ctrl.move", ctrl.move), D("ctrl.move_start", ctrl.move_start),
@@ -475,6 +477,10 @@ int hil_rig_write_meta(const struct hil_rig *r, FILE *f, double wall_s)
     if (!r || !f)
         return HIL_E_ARG;
     hil_rig_meta_begin(&r->cfg, "lockstep", f);
+    fprintf(f, "  \"plant_effects\": {\"backlash\": %.17g, \"extra_mode\": [%.17g, %.17g, %.17g], "
+               "\"friction_model\": %d},\n",
+            r->cfg.plant_p.backlash, r->cfg.plant_p.extra_inertia, r->cfg.plant_p.extra_hz, r->cfg.plant_p.extra_zeta,
+            r->cfg.plant_p.friction.model);
     fprintf(f, "  \"bus_off\": {\"drive\": [%.17g, %.17g], \"episodes\": %llu},\n",
             r->cfg.drive_busoff_start, r->cfg.drive_busoff_end, (unsigned long long)r->st.bus_off_episodes);
     fprintf(f, "  \"counts\": {\"cycles\": %llu, \"frames_sent\": %llu, \"frames_lost\": %llu, "

@@ -459,6 +459,72 @@ static void test_twomass_plant_conserves_momentum_and_oscillates_at_gear_mode(vo
     assert_int_equal(hil_plant_init(&pl, &p), HIL_E_ARG);
 }
 
+static void test_twomass_backlash_holds_link_until_play_is_crossed(void **state)
+{
+    struct hil_plant pl;
+    struct hil_plant_params p;
+    struct hil_out o;
+    struct hil_can_frame f;
+    double tau = 5.0, t_cross;
+    int k, moved_early = 0;
+    (void)state;
+    hil_plant_params_default(&p);
+    p.model = HIL_PLANT_TWOMASS;
+    p.friction.b1 = 0.0;
+    p.friction.b0 = 0.0;
+    p.backlash = 0.02;
+    assert_int_equal(hil_plant_init(&pl, &p), HIL_OK);
+    /* free motor: theta_M = tau t^2 / (2 I_M) reaches the half play 0.01 rad at t_cross */
+    t_cross = sqrt(2.0 * 0.01 * p.I_M / tau);
+    hil_co_rig_encode(&f, HIL_COB_RIG_TORQUE, tau, tau);
+    for (k = 0; k < 300; k++) {
+        o.n = 0;
+        hil_plant_on_frame(&pl, &f, &o);
+        if (pl.t < t_cross - 2 * p.T) {
+            moved_early |= pl.psi != 0.0;
+            assert_close(pl.theta, tau * pl.t * pl.t / (2.0 * p.I_M), 1e-9);
+        }
+    }
+    assert_false(moved_early);
+    assert_true(pl.psi > 0.0);
+    p.backlash = -1.0;
+    assert_int_equal(hil_plant_init(&pl, &p), HIL_E_ARG);
+}
+
+static void test_twomass_extra_mode_conserves_momentum_and_shows_at_the_tip(void **state)
+{
+    struct hil_plant pl;
+    struct hil_plant_params p;
+    struct hil_out o;
+    struct hil_can_frame f;
+    double tau = 20.0, dev = 0.0, t;
+    int k;
+    (void)state;
+    hil_plant_params_default(&p);
+    p.model = HIL_PLANT_TWOMASS;
+    p.friction.b1 = 0.0;
+    p.friction.b0 = 0.0;
+    p.extra_inertia = 0.05;
+    p.extra_hz = 20.0;
+    p.extra_zeta = 0.0;
+    p.substeps = 8;
+    assert_int_equal(hil_plant_init(&pl, &p), HIL_OK);
+    hil_co_rig_encode(&f, HIL_COB_RIG_TORQUE, tau, tau);
+    for (k = 0; k < 200; k++) {
+        o.n = 0;
+        hil_plant_on_frame(&pl, &f, &o);
+        if (fabs(pl.x[4]) > dev)
+            dev = fabs(pl.x[4]);
+    }
+    t = 200 * p.T;
+    /* I_M theta' + I_L psi_link' + I_e (psi_link' + q_e') = tau t */
+    assert_rel(p.I_M * pl.x[1] + p.I_L * pl.x[3] + p.extra_inertia * (pl.x[3] + pl.x[5]), tau * t, 1e-9);
+    assert_true(dev > 1e-5);
+    assert_close(pl.psi, pl.x[2] + pl.x[4], 0.0);
+    p.extra_hz = 0.0;
+    assert_int_equal(hil_plant_init(&pl, &p), HIL_E_ARG);
+}
+
 /* Runs controller cycles against a drive reporting a resting shaft; IMU
  * readings arrive every second cycle while `imu_on`. Returns the RPDO torque. */
 static double ctrl_cycle(struct hil_ctrl *c, int imu_on, uint8_t *seq, struct hil_out *o)
@@ -569,6 +635,8 @@ int main(void)
         cmocka_unit_test(test_imu_saturates_and_flags_out_of_range_rates),
         cmocka_unit_test(test_rigid_plant_matches_closed_form_under_constant_torque),
         cmocka_unit_test(test_twomass_plant_conserves_momentum_and_oscillates_at_gear_mode),
+        cmocka_unit_test(test_twomass_backlash_holds_link_until_play_is_crossed),
+        cmocka_unit_test(test_twomass_extra_mode_conserves_momentum_and_shows_at_the_tip),
         cmocka_unit_test(test_ctrl_watchdog_ramps_torque_to_zero_and_recovers),
         cmocka_unit_test(test_ctrl_counts_missed_inputs_and_ignores_malformed),
     };

@@ -18,7 +18,15 @@
  *        I_M theta_M'' = tau - c_s (theta_M - psi) - tau_f(theta_M'),
  *        I_L psi''     = c_s (theta_M - psi).
  * The tip is at radius L on the link: tangential acc L psi'', radial
- * -L psi'^2. */
+ * -L psi'^2.
+ * Effects of "twomass" (each off at 0):
+ *  - backlash: total play b of the gear, the spring acts on the dead-zone
+ *    twist dz(theta_M - psi) = delta - clamp(delta, -b/2, b/2);
+ *  - extra (unmodelled) mode: an inertia I_e on the link through a spring of
+ *    natural frequency f_e (k_e = I_e (2 pi f_e)^2) with damping ratio zeta_e:
+ *        I_e (q_e'' + psi'') = -k_e q_e - d_e q_e',  d_e = 2 zeta_e sqrt(k_e I_e),
+ *    acting back on the link (I_L psi'' = spring + k_e q_e + d_e q_e'); the
+ *    tip (IMU) then sees psi + q_e. */
 #ifndef HIL_PLANT_H
 #define HIL_PLANT_H
 #include "frac/friction.h"
@@ -34,6 +42,8 @@ struct hil_plant_params {
     double I_M, I_L;   /* twomass: motor (driven side) and link inertia [kg m^2] > 0 */
     double c_s;        /* twomass: gear stiffness [Nm/rad] > 0 */
     frac_friction_params friction; /* twomass: motor friction (frac/friction.h) */
+    double backlash;   /* twomass: total gear play [rad] >= 0 */
+    double extra_inertia, extra_hz, extra_zeta; /* twomass: extra mode (I_e = 0: off) */
     double L;          /* tip radius [m] > 0 */
     unsigned substeps; /* RK4 steps per half cycle, 1..1000 */
 };
@@ -44,7 +54,8 @@ struct hil_plant {
     frac_friction fric;
     double t;                  /* simulated time [s] */
     double theta, omega;       /* shaft (motor, driven side): angle, rate */
-    double psi, psi_d, psi_dd; /* link/tip: angle, rate, acceleration */
+    double psi, psi_d, psi_dd; /* tip: angle, rate, acceleration (link + extra mode) */
+    double x[6];               /* theta_M, theta_M', psi_link, psi_link', q_e, q_e' */
     uint64_t steps;
 };
 
