@@ -538,6 +538,48 @@ static void test_exp_d_sends_feedforward_torque_d_i_cycles_early(void **state)
     assert_int_equal(a.lqg.StatusID, fracSTAT_DISABLED);
 }
 
+/* Wall-clock mode: ArmCtrl (Exp. D) and ImuRead in real time for 0.24 s,
+ * the plant in the tick hook; CPU time per Cyclic #1 cycle is measured.
+ * Timing on a shared host is not asserted (violations are reported only). */
+static void test_exp_d_runs_in_wall_clock_mode(void **state)
+{
+    static bench b;
+    static armctrl a;
+    static imuread m;
+    armctrl_params par;
+    plc_program pa, pm;
+    const plc_program *reg[2];
+    plc_rt_config cfg;
+    static plc_rt rt;
+    char err[256];
+    (void)state;
+    build_ff();
+    lqg_params(&par, 1);
+    memset(&b, 0, sizeof b);
+    b.torque_delay = 48;
+    b.imu_delay = 30;
+    armctrl_program(&a, &pa, &par, &b.drive_img, &b.imu_img, &b.ctrl_img);
+    imuread_program(&m, &pm, 1.0f, &b.can_img, &b.imu_img);
+    b.ctrl = &a;
+    reg[0] = &pa;
+    reg[1] = &pm;
+    assert_int_equal(plc_rt_config_load(&cfg, FRAC_SOURCE_DIR "/plc_blocks/runtime/x20cp1586.cfg", err, sizeof err),
+                     PLC_RT_OK);
+    cfg.reaction = PLC_RT_REACT_CONTINUE;
+    assert_int_equal(plc_rt_init(&rt, &cfg, reg, 2, err, sizeof err), PLC_RT_OK);
+    rt.tick_hook = bench_tick;
+    rt.tick_ctx = &b;
+    assert_int_equal(plc_rt_start(&rt), PLC_RT_OK);
+    assert_int_equal(plc_rt_run_wall(&rt, 2400), PLC_RT_OK);
+    plc_rt_report(&rt, stdout);
+    assert_int_equal(rt.stats[0].cycles, 200);
+    assert_int_equal(rt.stats[1].cycles, 400);
+    assert_true(rt.stats[0].cpu_ns_max > 0);
+    assert_false(b.ctrl_img.Error);
+    assert_true(b.torque_seen);
+    plc_rt_stop(&rt);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -547,6 +589,7 @@ int main(void)
         cmocka_unit_test(test_invalid_parameters_never_enable_torque),
         cmocka_unit_test(test_exp_a_and_d_load_the_parameter_table_and_track),
         cmocka_unit_test(test_table_failing_validation_never_enables_torque),
+        cmocka_unit_test(test_exp_d_runs_in_wall_clock_mode),
         cmocka_unit_test(test_stale_drive_ramps_torque_to_zero),
         cmocka_unit_test(test_exp_d_sends_feedforward_torque_d_i_cycles_early),
     };
