@@ -223,7 +223,7 @@ static void run_bench(bench *b, const armctrl_params *par, uint64_t ticks, armct
     run_bench_cost(b, par, ticks, a, m, 0);
 }
 
-static void test_exp_a_tracks_table_8_5_in_lockstep(void **state)
+static void test_exp_a_and_b_track_table_8_5_in_lockstep(void **state)
 {
     static bench b;
     static armctrl a;
@@ -247,6 +247,15 @@ static void test_exp_a_tracks_table_8_5_in_lockstep(void **state)
     /* torque stays in the range the thesis reports for Exp. A (-40..60 Nm) */
     assert_true(b.max_abs_tau < 60.0);
     assert_true(b.max_abs_tau > 30.0);
+    /* Exp. B runs the same PD + friction path on ibFFC tables; those come
+     * from the stable inversion of the flexible model (design tools), so on
+     * this rigid model the variant is closed with the rbFFC tables */
+    par.Variant = ARMCTRL_EXP_B;
+    memset(&b, 0, sizeof b);
+    run_bench(&b, &par, 32000, &a, &m);
+    assert_false(b.ctrl_img.Error);
+    assert_true(b.max_track_err < 5e-3);
+    assert_close(b.pl.th_l, FRAC_PI / 2, 2e-3);
 }
 
 static void lqg_params(armctrl_params *p, int exp_d)
@@ -583,7 +592,7 @@ static void test_exp_d_runs_in_wall_clock_mode(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_exp_a_tracks_table_8_5_in_lockstep),
+        cmocka_unit_test(test_exp_a_and_b_track_table_8_5_in_lockstep),
         cmocka_unit_test(test_exp_c_lqg_tracks_table_8_5_in_lockstep),
         cmocka_unit_test(test_exp_d_lqg_with_delays_tracks_table_8_5_in_lockstep),
         cmocka_unit_test(test_invalid_parameters_never_enable_torque),
