@@ -22,6 +22,8 @@ void hil_plant_params_default(struct hil_plant_params *p)
     p->friction.delta = 2.0;
     p->L = 1.0;
     p->substeps = 4;
+    p->kv_order = 0.5;
+    p->kv_memory = 200;
 }
 
 static int pos(double x) { return isfinite(x) && x > 0.0; }
@@ -43,10 +45,19 @@ int hil_plant_init(struct hil_plant *pl, const struct hil_plant_params *p)
     } else {
         return HIL_E_ARG;
     }
+    if (p->model == HIL_PLANT_TWOMASS && p->kv_damping != 0.0 &&
+        (!(p->kv_damping > 0.0) || !isfinite(p->kv_damping) || !(p->kv_order > 0.0 && p->kv_order <= 1.0) ||
+         p->kv_memory < 1 || p->kv_memory > HIL_PLANT_KV_MAX))
+        return HIL_E_ARG;
     memset(pl, 0, sizeof *pl);
     pl->p = *p;
-    if (p->model == HIL_PLANT_TWOMASS)
+    if (p->model == HIL_PLANT_TWOMASS) {
         pl->fric = fr;
+        if (p->kv_damping > 0.0 &&
+            frac_gl_init(&pl->kv, (frac_real)p->kv_order, (frac_real)(0.5 * p->T / p->substeps), p->kv_memory,
+                         pl->kv_store, FRAC_GL_STORAGE(HIL_PLANT_KV_MAX)) != FRAC_OK)
+            return HIL_E_ARG;
+    }
     return HIL_OK;
 }
 
@@ -65,7 +76,7 @@ static void deriv(struct hil_plant *pl, const double *x, double tau, double *dx)
         frac_real tf = 0;
         double delta = x[0] - x[2], h = 0.5 * pl->p.backlash, spring, extra = 0.0, k_e, d_e;
         double dz = delta > h ? delta - h : (delta < -h ? delta + h : 0.0);
-        spring = pl->p.c_s * dz;
+        spring = pl->p.c_s * dz + pl->kv_torque;
         frac_friction_eval(&pl->fric, (frac_real)x[1], &tf);
         if (pl->p.extra_inertia > 0.0) {
             double w = 2.0 * M_PI * pl->p.extra_hz;
@@ -90,6 +101,11 @@ static void rk4(struct hil_plant *pl, double h, double tau0, double slope, unsig
     unsigned i;
     int j;
     for (i = 0; i < n; i++, s += dt) {
+        if (pl->p.model == HIL_PLANT_TWOMASS && pl->p.kv_damping > 0.0) {
+            frac_real y = 0;
+            if (frac_gl_step(&pl->kv, (frac_real)(x[0] - x[2]), &y) == FRAC_OK)
+                pl->kv_torque = pl->p.kv_damping * (double)y;
+        }
         deriv(pl, x, tau0 + slope * s, k1);
         for (j = 0; j < 6; j++)
             y[j] = x[j] + 0.5 * dt * k1[j];

@@ -45,7 +45,8 @@ static const struct key keys[] = {
     R("plant.fric_b3s", plant_p.friction.b3s), R("plant.fric_v_s", plant_p.friction.v_s),
     R("plant.fric_delta", plant_p.friction.delta), D("plant.backlash", plant_p.backlash),
     D("plant.extra_inertia", plant_p.extra_inertia), D("plant.extra_hz", plant_p.extra_hz),
-    D("plant.extra_zeta", plant_p.extra_zeta),
+    D("plant.extra_zeta", plant_p.extra_zeta), D("plant.kv_damping", plant_p.kv_damping),
+    D("plant.kv_order", plant_p.kv_order), U("plant.kv_memory", plant_p.kv_memory),
     U("plant.substeps", plant_p.substeps),
     D("ctrl.kp", ctrl.kp), D("ctrl.kd", ctrl.kd), D("ctrl.k_tip", ctrl.k_tip),
     D("ctrl.move", ctrl.move), D("ctrl.move_start", ctrl.move_start),
@@ -478,9 +479,10 @@ int hil_rig_write_meta(const struct hil_rig *r, FILE *f, double wall_s)
         return HIL_E_ARG;
     hil_rig_meta_begin(&r->cfg, "lockstep", f);
     fprintf(f, "  \"plant_effects\": {\"backlash\": %.17g, \"extra_mode\": [%.17g, %.17g, %.17g], "
-               "\"friction_model\": %d},\n",
+               "\"friction_model\": %d, \"kelvin_voigt\": [%.17g, %.17g, %u]},\n",
             r->cfg.plant_p.backlash, r->cfg.plant_p.extra_inertia, r->cfg.plant_p.extra_hz, r->cfg.plant_p.extra_zeta,
-            r->cfg.plant_p.friction.model);
+            r->cfg.plant_p.friction.model, r->cfg.plant_p.kv_damping, r->cfg.plant_p.kv_order,
+            r->cfg.plant_p.kv_memory);
     fprintf(f, "  \"bus_off\": {\"drive\": [%.17g, %.17g], \"episodes\": %llu},\n",
             r->cfg.drive_busoff_start, r->cfg.drive_busoff_end, (unsigned long long)r->st.bus_off_episodes);
     fprintf(f, "  \"counts\": {\"cycles\": %llu, \"frames_sent\": %llu, \"frames_lost\": %llu, "

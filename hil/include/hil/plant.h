@@ -26,13 +26,23 @@
  *    natural frequency f_e (k_e = I_e (2 pi f_e)^2) with damping ratio zeta_e:
  *        I_e (q_e'' + psi'') = -k_e q_e - d_e q_e',  d_e = 2 zeta_e sqrt(k_e I_e),
  *    acting back on the link (I_L psi'' = spring + k_e q_e + d_e q_e'); the
- *    tip (IMU) then sees psi + q_e. */
+ *    tip (IMU) then sees psi + q_e;
+ *  - fractional Kelvin-Voigt damping of the gear spring: torque
+ *    kv_damping * D^kv_order (theta_M - psi) added to the spring torque, the
+ *    operator by Grunwald-Letnikov (frac/fo_gl.h) at the RK4 substep with
+ *    kv_memory terms, evaluated once per substep and held over it (an
+ *    explicit coupling, first order in the substep). The flexible beam of the
+ *    issue carries this damping along its length; here the only compliance
+ *    is the gear's. */
 #ifndef HIL_PLANT_H
 #define HIL_PLANT_H
+#include "frac/fo_gl.h"
 #include "frac/friction.h"
 #include "hil/node.h"
 
 enum hil_plant_model { HIL_PLANT_RIGID = 0, HIL_PLANT_TWOMASS = 1 };
+
+#define HIL_PLANT_KV_MAX 1000 /* most Grunwald-Letnikov terms of the Kelvin-Voigt effect */
 
 struct hil_plant_params {
     int model;         /* enum hil_plant_model */
@@ -44,6 +54,9 @@ struct hil_plant_params {
     frac_friction_params friction; /* twomass: motor friction (frac/friction.h) */
     double backlash;   /* twomass: total gear play [rad] >= 0 */
     double extra_inertia, extra_hz, extra_zeta; /* twomass: extra mode (I_e = 0: off) */
+    double kv_damping;   /* twomass: fractional damping [Nm s^a/rad] >= 0 (0: off) */
+    double kv_order;     /* its order a, (0, 1] */
+    unsigned kv_memory;  /* GL terms, 1..HIL_PLANT_KV_MAX */
     double L;          /* tip radius [m] > 0 */
     unsigned substeps; /* RK4 steps per half cycle, 1..1000 */
 };
@@ -56,6 +69,9 @@ struct hil_plant {
     double theta, omega;       /* shaft (motor, driven side): angle, rate */
     double psi, psi_d, psi_dd; /* tip: angle, rate, acceleration (link + extra mode) */
     double x[6];               /* theta_M, theta_M', psi_link, psi_link', q_e, q_e' */
+    frac_gl kv;                /* D^a of the gear twist (uses kv_store) */
+    frac_real kv_store[FRAC_GL_STORAGE(HIL_PLANT_KV_MAX)];
+    double kv_torque;          /* fractional damping torque of the current substep */
     uint64_t steps;
 };
 
@@ -66,7 +82,8 @@ struct hil_plant {
  * linear friction b1 = 3.04, b0 = 7.684, k = 60 (Table 8.6). */
 void hil_plant_params_default(struct hil_plant_params *p);
 /* Validates p (friction by frac_friction_init for twomass) and starts at
- * rest at angle 0. HIL_OK or HIL_E_ARG. */
+ * rest at angle 0. HIL_OK or HIL_E_ARG. The struct holds pointers into
+ * itself (the GL history): initialise it where it lives, do not copy it. */
 int hil_plant_init(struct hil_plant *pl, const struct hil_plant_params *p);
 /* Consumes one bus frame; same contract as hil_drive_on_frame. */
 int hil_plant_on_frame(struct hil_plant *pl, const struct hil_can_frame *f, struct hil_out *out);
