@@ -1,13 +1,68 @@
 /* DampLoop: the seed 002 collocated damping example program (DampLoop.h). */
 #include "DampLoop.h"
+#include "frac/frac_types.h"
 
 #include <string.h>
+
+int damploop_params_from_table(FracDampParType *p, const frac_ptable *t)
+{
+    static const char *const names[10] = {"Kc", "alpha", "m", "n1", "n2", "d1", "d2", "fa", "fbeta", "fb"};
+    char name[FRAC_PTABLE_TABLE_NAME_LEN];
+    frac_real v[10];
+    int i, st;
+    if (!p || !t) {
+        return FRAC_E_NULL;
+    }
+    if ((st = frac_ptable_name(t, name)) != FRAC_OK) {
+        return st;
+    }
+    if (strcmp(name, "collocated")) {
+        return FRAC_E_FORMAT;
+    }
+    for (i = 0; i < 10; i++) {
+        if ((st = frac_ptable_get(t, names[i], 1, 1, &v[i])) != FRAC_OK) {
+            return st;
+        }
+    }
+    if (!(v[2] == FRAC_R(0.0) || v[2] == FRAC_R(1.0) || v[2] == FRAC_R(2.0))) {
+        return FRAC_E_PARAM;
+    }
+    p->Kc = (REAL)v[0];
+    p->Alpha = (REAL)v[1];
+    p->M = (UDINT)v[2];
+    p->N1 = (REAL)v[3];
+    p->N2 = (REAL)v[4];
+    p->D1 = (REAL)v[5];
+    p->D2 = (REAL)v[6];
+    p->Fa = (REAL)v[7];
+    p->Fbeta = (REAL)v[8];
+    p->Fb = (REAL)v[9];
+    return FRAC_OK;
+}
 
 void damploop_init(void *ctx)
 {
     damploop *d = (damploop *)ctx;
     memset(&d->law, 0, sizeof d->law);
     memset(&d->out, 0, sizeof d->out);
+    if (d->table) {
+        int st = FRAC_OK;
+        memset(&d->partable, 0, sizeof d->partable);
+        d->partable.pData = (USINT *)d->table;
+        d->partable.Size = d->table_size;
+        d->partable.Enable = 1;
+        ParTable(&d->partable);
+        if (!d->partable.Error) {
+            st = damploop_params_from_table(&d->loaded, &d->partable.Handle);
+        }
+        if (d->partable.Error || st != FRAC_OK) {
+            d->fault = 1;
+            d->out.Error = 1;
+            d->out.StatusID = d->partable.Error ? d->partable.StatusID : (UINT)(fracERR_LIBFRAC + (UINT)(-st));
+            return;
+        }
+        d->par = &d->loaded;
+    }
     d->law.Parameters = *d->par;
     d->law.Enable = 1;
     FracDamp(&d->law);
@@ -39,6 +94,8 @@ void damploop_exit(void *ctx)
     damploop *d = (damploop *)ctx;
     d->law.Enable = 0;
     FracDamp(&d->law);
+    d->partable.Enable = 0;
+    ParTable(&d->partable);
     d->out.MotorReference = 0.0f;
 }
 
@@ -63,4 +120,13 @@ void damploop_program(damploop *d, plc_program *prog, const FracDampParType *par
     prog->n_inputs = 1;
     prog->outputs = &d->io_out;
     prog->n_outputs = 1;
+}
+
+void damploop_program_table(damploop *d, plc_program *prog, const FracDampParType *base, const void *table,
+                            UDINT size, damploop_inputs *image_in, damploop_outputs *image_out)
+{
+    damploop_program(d, prog, base, image_in, image_out);
+    d->table = table;
+    d->table_size = size;
+    d->loaded = *base;
 }

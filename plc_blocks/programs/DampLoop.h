@@ -17,6 +17,7 @@
 
 #include "FracCtrl.h"
 #include "plc_rt.h"
+#include "frac/ptable.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -33,8 +34,21 @@ typedef struct damploop_outputs {
     UINT StatusID;
 } damploop_outputs;
 
+/*
+ * Law from a parameter table named "collocated" with 1 x 1 entries
+ * Kc, alpha, m, n1, n2, d1, d2, fa, fbeta, fb (the FracDampParType fields
+ * of the design; Ts and the realization stay those of p). Returns FRAC_OK,
+ * FRAC_E_NOT_FOUND, FRAC_E_DIM (entry not 1 x 1), FRAC_E_FORMAT (other
+ * table), FRAC_E_PARAM (m not 0, 1 or 2), FRAC_E_NULL.
+ */
+int damploop_params_from_table(FracDampParType *p, const frac_ptable *t);
+
 typedef struct damploop {
     const FracDampParType *par;
+    const void *table;       /* data object, or NULL when par is given directly */
+    UDINT table_size;
+    FracDampParType loaded;  /* par with the table's law */
+    struct ParTable partable;
     damploop_inputs in;
     damploop_outputs out;
     struct FracDamp law;
@@ -45,6 +59,11 @@ typedef struct damploop {
 /* Fills `prog` (name "DampLoop"); `par` must stay valid while it runs. */
 void damploop_program(damploop *d, plc_program *prog, const FracDampParType *par, damploop_inputs *image_in,
                       damploop_outputs *image_out);
+
+/* As damploop_program, the law from the data object `table` at _INIT
+ * (ParTable); a table that fails leaves the program in fault (output 0). */
+void damploop_program_table(damploop *d, plc_program *prog, const FracDampParType *base, const void *table,
+                            UDINT size, damploop_inputs *image_in, damploop_outputs *image_out);
 
 void damploop_init(void *ctx);
 void damploop_cyclic(void *ctx);

@@ -7,6 +7,7 @@
 #include "frac_test.h"
 #include "DampLoop.h"
 #include "plc_rt.h"
+#include "ptable_writer.h"
 
 #include <string.h>
 
@@ -133,6 +134,9 @@ static void seed002_law(FracDampParType *p)
     p->N = 6;
 }
 
+static unsigned char table_buf[1024];
+static unsigned long table_len; /* 0: parameters given directly */
+
 static void run_arm(rig2 *r, double m2, const FracDampParType *par)
 {
     static damploop d;
@@ -145,7 +149,11 @@ static void run_arm(rig2 *r, double m2, const FracDampParType *par)
     r->tail_min = 1e9;
     r->tail_max = -1e9;
     arm2_init(&r->arm, m2);
-    damploop_program(&d, &prog, par, &r->in_img, &r->out_img);
+    if (table_len) {
+        damploop_program_table(&d, &prog, par, table_buf, (UDINT)table_len, &r->in_img, &r->out_img);
+    } else {
+        damploop_program(&d, &prog, par, &r->in_img, &r->out_img);
+    }
     reg[0] = &prog;
     assert_int_equal(plc_rt_config_parse(&cfg,
         "[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\n"
@@ -204,11 +212,60 @@ static void test_collocated_loop_with_bad_parameters_keeps_the_motor_still(void 
     assert_close(r.arm.x[0], 0.0, 0.0);
 }
 
+/* The "collocated" table (DampLoop.h) with the seed 002 law (48)/(52). */
+static unsigned long collocated_table(const char *name, double m)
+{
+    static double v[10];
+    static const char *const names[10] = {"Kc", "alpha", "m", "n1", "n2", "d1", "d2", "fa", "fbeta", "fb"};
+    ptw_entry e[10];
+    int i;
+    v[0] = 5.31; v[1] = 0.8; v[2] = m; v[3] = 0.0142; v[4] = 0.0;
+    v[5] = 0.0; v[6] = 0.0; v[7] = 0.116; v[8] = 0.55; v[9] = 0.011;
+    for (i = 0; i < 10; i++) {
+        e[i].name = names[i];
+        e[i].rows = 1;
+        e[i].cols = 1;
+        e[i].values = &v[i];
+    }
+    return ptw_write(table_buf, sizeof table_buf, name, e, 10);
+}
+
+static void test_collocated_law_loads_from_the_parameter_table(void **state)
+{
+    static rig2 r;
+    FracDampParType base;
+    (void)state;
+    seed002_law(&base);
+    base.Kc = 1.0f; /* overwritten by the table's 5.31 */
+    table_len = collocated_table("collocated", 2.0);
+    run_arm(&r, 0.12, &base);
+    print_message("from table: peak %.3f, 2%% settling at %.3f s\n", r.peak, r.settle_time);
+    assert_false(r.out_img.Error);
+    assert_true(r.peak < 1.15);
+    assert_true(r.settle_time < 1.5);
+    /* refused tables: the motor never moves */
+    table_len = collocated_table("collocated", 2.0);
+    table_buf[table_len - 9] ^= 0x01;
+    run_arm(&r, 0.12, &base);
+    assert_int_equal(r.out_img.StatusID, fracERR_TABLE_CRC);
+    assert_close(r.arm.x[0], 0.0, 0.0);
+    table_len = collocated_table("collocated", 3.0);
+    run_arm(&r, 0.12, &base);
+    assert_int_equal(r.out_img.StatusID, fracERR_PARAM);
+    assert_close(r.arm.x[0], 0.0, 0.0);
+    table_len = collocated_table("fopi", 2.0);
+    run_arm(&r, 0.12, &base);
+    assert_int_equal(r.out_img.StatusID, fracERR_TABLE_FORMAT);
+    assert_close(r.arm.x[0], 0.0, 0.0);
+    table_len = 0;
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_collocated_law_tracks_the_tip_step_over_the_mass_range),
         cmocka_unit_test(test_collocated_loop_with_bad_parameters_keeps_the_motor_still),
+        cmocka_unit_test(test_collocated_law_loads_from_the_parameter_table),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
