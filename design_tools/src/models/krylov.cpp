@@ -36,7 +36,7 @@ PhSystem krylov_reduce(const PhSystem& full, const std::vector<double>& shifts)
     const Eigen::MatrixXd QV = full.Q * V;
     PhSystem red;
     red.Q = V.transpose() * QV;
-    red.Q = 0.5 * (red.Q + red.Q.transpose());
+    red.Q = (0.5 * (red.Q + red.Q.transpose())).eval();
     const Eigen::LLT<Eigen::MatrixXd> llt(red.Q);
     if (llt.info() != Eigen::Success) throw std::runtime_error("krylov: V^T Q V is not positive definite");
     const Eigen::MatrixXd Qi = llt.solve(Eigen::MatrixXd::Identity(r, r));

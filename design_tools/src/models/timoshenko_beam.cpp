@@ -104,6 +104,7 @@ PsBeam build_ps_beam(const TimoshenkoParams& p, int N, Collocation c)
         b.M.noalias() += qw[q] * ve * vf.transpose();
         b.S.noalias() += qw[q] * vf * vf.transpose();
     }
+    b.S = (0.5 * (b.S + b.S.transpose())).eval();  // exactly symmetric (the rounding of the sums is not)
     // Phi (3.60)
     b.Phi.resize(2, N + 1);
     const Eigen::RowVectorXd w0 = we.values(0.0).transpose(), wL = we.values(L).transpose();

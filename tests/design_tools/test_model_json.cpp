@@ -1,0 +1,179 @@
+// test_model_json.cpp - the versioned JSON model format: round trips of every kind, one-line errors
+// naming the field, and `fracdesign model --model FILE` on good and bad files.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "fracdesign/model_json.hpp"
+
+using namespace fracdesign;
+using nlohmann::json;
+
+namespace {
+
+std::string error_of(const json& j)
+{
+    try {
+        model_from_json(j);
+    } catch (const ModelFormatError& e) {
+        return e.what();
+    }
+    return "no error";
+}
+
+json beam_doc()
+{
+    BeamModelSpec b;
+    b.beam = wang_steel_beam();
+    b.N = 9;
+    return model_to_json(b);
+}
+
+StateSpace small_ss(double Ts)
+{
+    StateSpace s;
+    s.A = Eigen::MatrixXd::Identity(2, 2) * -1.0;
+    s.A(0, 1) = 0.5;
+    s.B = Eigen::MatrixXd::Ones(2, 1);
+    s.C = Eigen::MatrixXd::Ones(1, 2);
+    s.D = Eigen::MatrixXd::Zero(1, 1);
+    s.inputs = {"u [N m]"};
+    s.outputs = {"y [rad/s]"};
+    s.Ts = Ts;
+    return s;
+}
+
+}  // namespace
+
+TEST(ModelJson, every_kind_round_trips)
+{
+    ArmModelSpec arm;
+    arm.beam = wang_steel_beam();
+    arm.drive = wang_drive();
+    AntennaModelSpec ant;
+    ant.damping = haro_nominal_VI();
+    const std::vector<ModelSpec> specs = {BeamModelSpec{wang_steel_beam(), 5, Collocation::Equidistant},
+                                          arm,
+                                          ant,
+                                          CollocatedModelSpec{0.23, false},
+                                          FoProcessModelSpec{feliu_benftima_robot()},
+                                          small_ss(0.0),
+                                          small_ss(1.2e-3)};
+    for (const ModelSpec& m : specs) {
+        const json j = model_to_json(m);
+        EXPECT_EQ(j["schema"], "frac.model");
+        EXPECT_EQ(j["version"], 1);
+        EXPECT_EQ(j["units"], "SI");
+        EXPECT_EQ(model_to_json(model_from_json(j)), j) << j.dump();
+        EXPECT_EQ(model_from_json(json::parse(j.dump())).index(), m.index());
+    }
+    const StateSpace back = std::get<StateSpace>(model_from_json(model_to_json(small_ss(1.2e-3))));
+    EXPECT_DOUBLE_EQ(back.Ts, 1.2e-3);
+    EXPECT_EQ(back.A, small_ss(0).A);
+}
+
+TEST(ModelJson, state_space_of_rational_kinds_and_refusal_for_irrational_ones)
+{
+    EXPECT_EQ(model_state_space(BeamModelSpec{wang_steel_beam(), 9, Collocation::GaussLegendre}).nx(), 36);
+    ArmModelSpec arm{wang_steel_beam(), wang_drive(), ArmOptions()};
+    EXPECT_EQ(model_state_space(arm).nx(), 16);
+    arm.options.reduce = false;
+    EXPECT_EQ(model_state_space(arm).nx(), 40);
+    EXPECT_EQ(model_state_space(CollocatedModelSpec{}).nx(), 4);
+    EXPECT_THROW(model_state_space(AntennaModelSpec{}), std::invalid_argument);
+    EXPECT_THROW(model_state_space(FoProcessModelSpec{}), std::invalid_argument);
+}
+
+TEST(ModelJson, bad_documents_give_one_line_errors_naming_the_field)
+{
+    json j = beam_doc();
+    j["discretization"]["N"] = 1;
+    EXPECT_NE(error_of(j).find("'discretization.N'"), std::string::npos);
+    j = beam_doc();
+    j["beam"]["L"] = -1.2;
+    EXPECT_NE(error_of(j).find("'beam.L'"), std::string::npos);
+    j = beam_doc();
+    j["beam"]["K_s"] = NAN;
+    EXPECT_NE(error_of(j).find("'beam.K_s': must be finite"), std::string::npos);
+    j = beam_doc();
+    j["beam"]["rho"] = "heavy";
+    EXPECT_NE(error_of(j).find("'beam.rho': must be a number"), std::string::npos);
+    j = beam_doc();
+    j["beam"].erase("K_b");
+    EXPECT_NE(error_of(j).find("'beam.K_b': is missing"), std::string::npos);
+    j = beam_doc();
+    j["version"] = 2;
+    EXPECT_NE(error_of(j).find("'version'"), std::string::npos);
+    j = beam_doc();
+    j["schema"] = "other";
+    EXPECT_NE(error_of(j).find("'schema'"), std::string::npos);
+    j = beam_doc();
+    j["kind"] = "robot";
+    EXPECT_NE(error_of(j).find("'kind'"), std::string::npos);
+    j = beam_doc();
+    j["discretization"]["collocation"] = "chebyshev";
+    EXPECT_NE(error_of(j).find("'discretization.collocation'"), std::string::npos);
+    for (const json& d : {beam_doc()}) EXPECT_EQ(error_of(d), "no error");
+}
+
+TEST(ModelJson, inconsistent_documents_are_refused)
+{
+    AntennaModelSpec ant;
+    ant.structure = AntennaStructure::I;
+    ant.damping = {1e-4, 1.0, 0.0, 0.0};
+    json j = model_to_json(ant);
+    EXPECT_EQ(error_of(j), "no error");
+    j["damping"]["alpha"] = 0.5;  // structure I fixes alpha = 1 (seed 000 Table 2)
+    EXPECT_NE(error_of(j).find("'damping.alpha': structure I fixes it to 1"), std::string::npos);
+    j = model_to_json(small_ss(0));
+    j["B"] = json::array({json::array({1.0})});  // 1 row for 2 states
+    EXPECT_NE(error_of(j).find("'B': must have 2 rows"), std::string::npos);
+    j = model_to_json(small_ss(0));
+    j["C"][0] = json::array({1.0});
+    EXPECT_NE(error_of(j).find("'C[0]': must have 2 columns"), std::string::npos);
+    j = model_to_json(small_ss(0));
+    j["inputs"] = json::array({"a", "b"});
+    EXPECT_NE(error_of(j).find("'inputs'"), std::string::npos);
+    j = model_to_json(small_ss(0));
+    j["time"] = "discrete";
+    EXPECT_NE(error_of(j).find("'Ts'"), std::string::npos);
+    ArmModelSpec arm{wang_steel_beam(), wang_drive(), ArmOptions()};
+    j = model_to_json(arm);
+    j["drive"]["r_h"] = -0.01;
+    EXPECT_NE(error_of(j).find("'drive.r_h'"), std::string::npos);
+    j = model_to_json(arm);
+    j["reduction"]["shifts"] = json::array();
+    EXPECT_NE(error_of(j).find("'reduction.shifts'"), std::string::npos);
+    // every message is a single line
+    EXPECT_EQ(error_of(j).find('\n'), std::string::npos);
+}
+
+TEST(ModelJson, cli_reads_a_model_file_and_reports_a_bad_one_in_one_line)
+{
+    const std::string dir = std::string(FRAC_BINARY_DIR) + "/test_model_json_tmp";
+    std::system(("mkdir -p " + dir).c_str());
+    write_model_file(dir + "/good.json", CollocatedModelSpec{0.12, true});
+    const std::string exe = FRACDESIGN_EXE;
+    EXPECT_EQ(std::system((exe + " model --model " + dir + "/good.json --json > " + dir + "/out.json").c_str()), 0);
+    std::ifstream out(dir + "/out.json");
+    const json r = json::parse(out);
+    EXPECT_NEAR(r["result"]["a1"].get<double>(), 6.014, 1e-3);
+    json bad = model_to_json(CollocatedModelSpec{0.12, true});
+    bad["m2_lb"] = -0.1;
+    std::ofstream(dir + "/bad.json") << bad.dump();
+    std::ofstream(dir + "/broken.json") << "{\"schema\": ";
+    for (const char* f : {"bad", "broken"}) {
+        const int rc = std::system((exe + " model --model " + dir + "/" + f + ".json 2> " + dir + "/err.txt").c_str());
+        EXPECT_NE(rc, 0) << f;
+        std::ifstream e(dir + "/err.txt");
+        std::stringstream ss;
+        ss << e.rdbuf();
+        const std::string msg = ss.str();
+        EXPECT_EQ(std::count(msg.begin(), msg.end(), '\n'), 1) << msg;
+        EXPECT_NE(msg.find(std::string(f) == "bad" ? "'m2_lb'" : "broken.json"), std::string::npos) << msg;
+    }
+}
