@@ -27,9 +27,9 @@
  * pole/zero distribution at wh acts like a first-order lag at wh. One
  * decade inside the band that is ~5.7 r deg, so the plain method meets
  * 1 deg only about two decades inside. The refined factor compensates
- * both edges: within [10 wb, wh/10] it stays within 0.5 deg and 0.05 dB
- * for N = 5 and 0 < r < 1 (tests/libfrac/test_fo_oustaloup.c prints the
- * tables).
+ * both edges: within [10 wb, wh/10] it stays within 0.5 deg (r <= 0.9;
+ * 0.56 deg at r = 0.99) and 0.05 dB for N = 5
+ * (tests/libfrac/test_fo_oustaloup.c prints the tables).
  *
  * Discretization: Tustin (bilinear) with prewarped band edges. The analog
  * band is [Wb, Wh] with W = (2/Ts) tan(w Ts/2), so the digital response is
