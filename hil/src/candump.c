@@ -4,12 +4,29 @@
 #include <string.h>
 #include "hil/candump.h"
 
+/* Writes v as exactly `digits` decimal digits (zero padded) ending before
+ * end; returns the start. v < 10^digits is the caller's guarantee. */
+static char *put_dec(char *end, unsigned long long v, int digits)
+{
+    while (digits-- > 0) {
+        *--end = (char)('0' + v % 10u);
+        v /= 10u;
+    }
+    return end;
+}
+
+/* Formatted by hand, not by snprintf: the log line is the hot path of a
+ * lockstep run (one per frame), and printf's format interpreter cost most
+ * of the bench's time. */
 int hil_candump_format(char *buf, size_t n, double t, const char *iface,
                        const struct hil_can_frame *f)
 {
+    static const char hex[] = "0123456789ABCDEF";
     long long sec, usec;
-    int st, len, i;
-    size_t il;
+    int st, i, idd;
+    size_t il, len, need;
+    char *p;
+    uint32_t id;
     if (!buf || !iface || !f || !(t >= 0.0) || t > 9.0e15)
         return HIL_E_ARG;
     il = strlen(iface);
@@ -27,18 +44,46 @@ int hil_candump_format(char *buf, size_t n, double t, const char *iface,
         sec++;
         usec -= 1000000;
     }
-    if (f->id & HIL_CAN_EFF_FLAG)
-        len = snprintf(buf, n, "(%010lld.%06lld) %s %08X#", sec, usec, iface,
-                       (unsigned)(f->id & HIL_CAN_EFF_MASK));
-    else
-        len = snprintf(buf, n, "(%010lld.%06lld) %s %03X#", sec, usec, iface, (unsigned)f->id);
-    if (len < 0 || (size_t)len + 2u * f->dlc + 2u > n)
-        return HIL_E_FULL;
-    for (i = 0; i < f->dlc; i++)
-        len += snprintf(buf + len, n - (size_t)len, "%02X", f->data[i]);
-    buf[len++] = '\n';
-    buf[len] = '\0';
-    return len;
+    {
+        /* seconds: at least 10 digits (candump's %010ld), more if needed */
+        int sd = 10;
+        unsigned long long v = (unsigned long long)sec;
+        while (sd < 20 && v >= 10000000000ull) {
+            v /= 10u;
+            sd++;
+        }
+        idd = (f->id & HIL_CAN_EFF_FLAG) ? 8 : 3;
+        need = 1 + (size_t)sd + 1 + 6 + 2 + il + 1 + (size_t)idd + 1 + 2u * f->dlc + 1 + 1;
+        if (need > n)
+            return HIL_E_FULL;
+        p = buf;
+        *p++ = '(';
+        put_dec(p + sd, (unsigned long long)sec, sd);
+        p += sd;
+        *p++ = '.';
+        put_dec(p + 6, (unsigned long long)usec, 6);
+        p += 6;
+        *p++ = ')';
+        *p++ = ' ';
+        memcpy(p, iface, il);
+        p += il;
+        *p++ = ' ';
+    }
+    id = f->id & (idd == 8 ? HIL_CAN_EFF_MASK : HIL_CAN_SFF_MASK);
+    for (i = idd - 1; i >= 0; i--) {
+        p[i] = hex[id & 0xFu];
+        id >>= 4;
+    }
+    p += idd;
+    *p++ = '#';
+    for (i = 0; i < f->dlc; i++) {
+        *p++ = hex[f->data[i] >> 4];
+        *p++ = hex[f->data[i] & 0xFu];
+    }
+    *p++ = '\n';
+    *p = '\0';
+    len = (size_t)(p - buf);
+    return (int)len;
 }
 
 static int hexval(char c)

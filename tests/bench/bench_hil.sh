@@ -32,6 +32,14 @@ wall=$("$bin/hil_bench" --processes --scenario "$work/speed.txt" --out "$work/b"
 procs=$(awk -v w="$wall" 'BEGIN { printf "%.1f", 2.0 / w }')
 printf '%-52s %12s %12s %8s\n' "lockstep speed [simulated s / wall s]" "hil_bench" "processes" "ratio"
 printf '%-52s %12s %12s %8s\n' "rigid test plant, 1.2 ms, full logging (goal >= 50)" "$inproc" "$procs" "$(ratio "$inproc" "$procs")"
+# Stable figure: instructions of hil_rig_run per simulated second (callgrind),
+# rigid and twomass plants, with and without the logs.
+printf 'T = 0.0012\nduration = 1\nplant = rigid\n' > "$work/one.txt"
+ir_rigid=$(callgrind_ir hil_rig_run "$bin/hil_bench" --scenario "$work/one.txt" --out "$work/e")
+printf 'T = 0.0012\nduration = 1\nplant = twomass\nplant.substeps = 8\nctrl.law = armctrl_a\n' > "$work/two.txt"
+ir_two=$(callgrind_ir hil_rig_run "$bin/hil_bench" --scenario "$work/two.txt" --out "$work/f")
+printf '%-52s %12s %12s %8s\n' "instructions per simulated second (callgrind)" "rigid+PD" "twomass+ArmCtrl" "ratio"
+printf '%-52s %12s %12s %8s\n' "hil_rig_run incl. candump log and CSV" "$ir_rigid" "$ir_two" "$(ratio "$ir_two" "$ir_rigid")"
 
 cat > "$work/rt.txt" <<SCEN
 T = 0.0012
