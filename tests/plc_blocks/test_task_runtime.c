@@ -336,6 +336,9 @@ static void test_service_mode_stops_every_task(void **state)
     assert_true(rt.service);
     assert_int_equal(rt.now_ns, 600 * US);
     assert_int_equal(plc_rt_run_sim(&rt, 1), PLC_RT_SERVICE);
+    assert_string_equal(plc_rt_strerror(PLC_RT_SERVICE), "service mode after a cycle-time violation");
+    assert_string_equal(plc_rt_strerror(PLC_RT_E_CONFIG), "configuration invalid");
+    assert_string_equal(plc_rt_strerror(42), "unknown");
 }
 
 /* ---- wall clock ---- */
