@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fracdesign/cli.hpp"
+#include "fracdesign/design/collocated.hpp"
 #include "fracdesign/design/fopi_fopd.hpp"
 
 namespace fracdesign {
@@ -85,17 +86,78 @@ int run_fo(FoKind kind, const Args& args)
     return 0;
 }
 
+int run_collocated(const Args& args)
+{
+    args.check_known({"json", "phi0", "wc0", "m2", "alpha", "m2-lo", "m2-hi", "exact", "prefilter", "prefilter-start"});
+    constexpr double kDeg = 3.14159265358979323846 / 180.0;
+    const double phi0_deg = args.num("phi0", 0.0), wc0 = args.num("wc0", 0.0);
+    if (!args.has("phi0") || !args.has("wc0")) throw UsageError("missing required option --phi0 (deg) or --wc0 (rad/s)");
+    if (!(phi0_deg > 0.0 && phi0_deg <= 90.0)) throw UsageError("--phi0 must lie in (0, 90] degrees (Theorem 5)");
+    const double m2 = args.num("m2", kFeliuM2Nominal), lo = args.num("m2-lo", kFeliuM2Min),
+                 hi = args.num("m2-hi", kFeliuM2Max);
+    if (!(lo > 0.0 && hi >= lo && m2 > 0.0)) throw UsageError("need 0 < --m2-lo <= --m2-hi and --m2 > 0 (lb)");
+    const CollocatedPlant nominal = collocated_plant(m2);
+    design::FdDesign d;
+    try {
+        d = design::design_fd(nominal, phi0_deg * kDeg, wc0, args.num("alpha", 0.0), !args.has("exact"));
+    } catch (const std::invalid_argument& e) {
+        std::cerr << "fracdesign tune collocated: infeasible specification: " << e.what() << "\n";
+        return 1;
+    }
+    const auto L = [&](double w) { return design::loop_fd(d, nominal, w, true); };
+    const auto c = design::modal_crossovers(L, nominal);
+    const auto range = design::crossover_range(d, lo, hi);
+    nlohmann::json j = design::to_json(d);
+    j["nominal_loop"] = {{"wc1", c.first.w}, {"pm1_deg", c.first.pm_deg}, {"wc2", c.second.w}, {"pm2_deg", c.second.pm_deg}};
+    j["crossover_range"] = {{"m2_lb", {lo, hi}}, {"wc", {range.first, range.second}}};
+    design::PrefilterResult pf;
+    if (args.has("prefilter")) {
+        design::Prefilter start;
+        if (args.has("prefilter-start")) {
+            const auto v = args.nums("prefilter-start");
+            if (v.size() != 3) throw UsageError("--prefilter-start needs fn,fd,beta");
+            start = design::Prefilter{v[0], v[1], v[2]};
+        }
+        try {
+            pf = design::optimise_prefilter(L, nominal, 1.0, 0.3, args.has("prefilter-start") ? &start : nullptr);
+        } catch (const std::invalid_argument& e) {
+            throw UsageError(e.what());
+        }
+        const double bw = design::bandwidth_3db([&](double w) { return design::closed_loop_tip(L, pf.F, nominal, w); });
+        j["prefilter"] = {{"form", "F(s) = (1 + fn s^beta)/(1 + fd s)"}, {"fn", pf.F.fn}, {"fd", pf.F.fd},
+                          {"beta", pf.F.beta}, {"band_0p3db", pf.band}, {"bandwidth_3db", bw},
+                          {"evaluations", pf.evaluations}};
+    }
+    if (args.has("json")) {
+        std::cout << j.dump(2) << "\n";
+        return 0;
+    }
+    std::printf("collocated fractional damping (seed 002, Theorem 5 case %d), nominal m2 = %g lb\n", d.theorem_case, m2);
+    std::printf("  a1 = %.4f, z1 = %.4f, a2 = %.4f rad/s\n", nominal.a1, nominal.z1, nominal.a2);
+    std::printf("  alpha = %.6g (exact %.6g), Kc = %.6g; C(s) = Kc %s s^(alpha-2)\n", d.alpha, d.alpha_exact, d.Kc,
+                d.q_approx ? "(1 + 0.0142 s)" : "(1 + 0.0071 s)^2");
+    std::printf("  nominal loop: w_c1 = %.4f rad/s, PM1 = %.2f deg; w_c2 = %.4f rad/s, PM2 = %.2f deg\n", c.first.w,
+                c.first.pm_deg, c.second.w, c.second.pm_deg);
+    std::printf("  robust crossover range over m2 in [%g, %g] lb: [%.4f, %.4f] rad/s\n", lo, hi, range.first,
+                range.second);
+    if (args.has("prefilter"))
+        std::printf("  prefilter F = (1 + %.4g s^%.4g)/(1 + %.4g s): +-0.3 dB band %.4f rad/s, -3 dB bandwidth %.4f rad/s\n",
+                    pf.F.fn, pf.F.beta, pf.F.fd, pf.band, j["prefilter"]["bandwidth_3db"].get<double>());
+    return 0;
+}
+
 int run_tune(const std::vector<std::string>& argv)
 {
-    Args args(argv, {"json"});
+    Args args(argv, {"json", "exact", "prefilter"});
     if (args.positional().size() != 1) throw UsageError("expected one design kind: fopi, fopd or collocated");
     const std::string kind = args.positional()[0];
     if (kind == "fopi") return run_fo(FoKind::PI, args);
     if (kind == "fopd") return run_fo(FoKind::PD, args);
-    throw UsageError("unknown design kind '" + kind + "' (fopi, fopd)");
+    if (kind == "collocated") return run_collocated(args);
+    throw UsageError("unknown design kind '" + kind + "' (fopi, fopd, collocated)");
 }
 
-CommandRegistrar reg({"tune", "closed-form fractional controller tuning (seed 001 FO-PI/FO-PD)",
+CommandRegistrar reg({"tune", "fractional controller tuning (seed 001 FO-PI/FO-PD, seed 002 collocated)",
                       "usage: fracdesign tune fopi --T T|--w0 W0 --lambda L [--K K] [--tau TAU]\n"
                       "                            --wc WC --phim PHIM --alpha A [--band-lo W --band-hi W] [--json]\n"
                       "       fracdesign tune fopd ... --mu MU ...\n\n"
@@ -107,7 +169,18 @@ CommandRegistrar reg({"tune", "closed-form fractional controller tuning (seed 00
                       "low-frequency condition (18) (PI), the numerical RHFC (22)/(35), the PD stability\n"
                       "condition K_p + delta > 0, and the feasible crossover band at PHIM (searched on\n"
                       "w_cn in [0.01, 10] unless --band-lo/--band-hi, rad/s, are given).\n"
-                      "Exit status 1 when the specification is infeasible (reason and band on stderr).\n",
+                      "Exit status 1 when the specification is infeasible (reason and band on stderr).\n\n"
+                      "       fracdesign tune collocated --phi0 DEG --wc0 W [--m2 LB] [--alpha A]\n"
+                      "                                  [--m2-lo LB --m2-hi LB] [--exact] [--prefilter]\n"
+                      "                                  [--prefilter-start FN,FD,BETA] [--json]\n\n"
+                      "Seed 002 two-mass arm, collocated base-moment loop: alpha = 2 phi0/pi (a1 < w_c0 < z1)\n"
+                      "or 2 - 2 phi0/pi (w_c0 < a1), Kc = 1/(w_c0^alpha |P(j w_c0)|) at the nominal tip mass\n"
+                      "(default 0.12 lb); --alpha overrides alpha (the paper rounds to 0.8); --exact keeps\n"
+                      "(1 + 0.0071 s)^2 instead of 1 + 0.0142 s. Reports the nominal modal crossovers and\n"
+                      "margins and the crossover range over m2 (default [0.01, 0.23] lb); --prefilter\n"
+                      "optimises F = (1 + fn s^beta)/(1 + fd s) for the widest +-0.3 dB band of |H|\n"
+                      "(local pattern search; --prefilter-start fn,fd,beta adds a starting point).\n"
+                      "A w_c0 not covered by Theorem 5 is reported infeasible with the ranges (exit 1).\n",
                       run_tune});
 
 }  // namespace
