@@ -190,24 +190,20 @@ int hil_ctrl_stop(struct hil_ctrl *c, struct hil_out *out)
     return hil_out_push(out, &f);
 }
 
-static void on_imu(struct hil_ctrl *c, const struct hil_imu_tpdo *t, int which, struct hil_out *out)
+/* The law uses the gyro z rate of TPDO1 (the thesis uses only the tip rate,
+ * y_3); TPDO2 (acceleration) is validated and counted, not used. */
+static void on_imu_rate(struct hil_ctrl *c, const struct hil_imu_tpdo *t, struct hil_out *out)
 {
-    if (which == 1) {
-        c->imu_rate = t->xyz[2] * HIL_GYRO_LSB;
-        if (!c->imu_seen || t->seq != c->imu_seq) {
-            c->imu_seen = 1;
-            c->imu_seq = t->seq;
-            c->imu_last_cycle = c->cycle ? c->cycle - 1 : 0;
-            c->imu_readings++;
-            if (c->fault && !c->law) {
-                c->fault = 0;
-                send_emcy(c, HIL_EMCY_NO_ERROR, out);
-            }
+    c->imu_rate = t->xyz[2] * HIL_GYRO_LSB;
+    if (!c->imu_seen || t->seq != c->imu_seq) {
+        c->imu_seen = 1;
+        c->imu_seq = t->seq;
+        c->imu_last_cycle = c->cycle ? c->cycle - 1 : 0;
+        c->imu_readings++;
+        if (c->fault && !c->law) {
+            c->fault = 0;
+            send_emcy(c, HIL_EMCY_NO_ERROR, out);
         }
-    } else {
-        int i;
-        for (i = 0; i < 3; i++)
-            c->imu_acc[i] = t->xyz[i] * HIL_ACC_LSB;
     }
 }
 
@@ -243,7 +239,8 @@ int hil_ctrl_on_frame(struct hil_ctrl *c, const struct hil_can_frame *f, struct 
         int which = f->id == HIL_COB_TPDO1(HIL_NODE_IMU) ? 1 : 2;
         hil_co_imu_decode(f, which, &t);
         c->rx.accepted++;
-        on_imu(c, &t, which, out);
+        if (which == 1)
+            on_imu_rate(c, &t, out);
         return HIL_OK;
     }
     default: {

@@ -93,11 +93,10 @@ uint16_t hil_drive_statusword(const struct hil_drive *d)
 
 /* CiA 402 device control (state transitions 2..12, 15 of the standard's
  * state machine; 0x6040 command coding). */
-static void controlword(struct hil_drive *d, uint16_t cw, struct hil_out *out)
+static void controlword(struct hil_drive *d, uint16_t cw)
 {
     enum hil_cia402_state s = d->state;
     int reset_edge = (cw & 0x80u) && !(d->last_controlword & 0x80u);
-    (void)out;
     d->last_controlword = cw;
     if (s == HIL_CIA402_FAULT) {
         if (reset_edge)
@@ -227,7 +226,7 @@ int hil_drive_on_frame(struct hil_drive *d, const struct hil_can_frame *f, struc
         d->rx.accepted++;
         if (d->nmt != HIL_NMT_STATE_OPERATIONAL)
             return HIL_E_STATE; /* PDOs are ignored outside "operational" (CiA 301) */
-        controlword(d, r.controlword, out);
+        controlword(d, r.controlword);
         d->cmd_latest = r.torque_mnm * HIL_TORQUE_LSB;
         d->since_rpdo = 0;
         return HIL_OK;

@@ -66,7 +66,7 @@ struct hil_ctrl {
     uint8_t sync_counter;
     int have_tpdo1, have_tpdo2, commanded;
     uint16_t statusword;
-    double theta, omega, imu_rate, imu_acc[3];
+    double theta, omega, imu_rate;
     int imu_seen;
     uint8_t imu_seq;
     uint64_t imu_last_cycle;
