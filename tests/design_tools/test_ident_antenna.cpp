@@ -1,10 +1,12 @@
 // Tests of the frequency-domain antenna fit (fracdesign/ident/antenna_fit.hpp).
+#include <ceres/jet.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
 #include "fracdesign/ident/antenna_fit.hpp"
+#include "fracdesign/ident/haro_synthetic.hpp"
 
 using namespace fracdesign;
 using namespace fracdesign::ident;
@@ -104,4 +106,41 @@ TEST(AntennaFit, refuses_bad_frf_and_options)
     EXPECT_THROW(fit_antenna(f, AntennaStructure::I, o), std::invalid_argument);
     EXPECT_THROW(parse_structure("VII"), std::invalid_argument);
     EXPECT_EQ(parse_structure("IV"), AntennaStructure::IV);
+}
+
+TEST(AntennaFit, fused_kernel_value_and_gradient_match_the_model_and_its_automatic_derivatives)
+{
+    using J4 = ceres::Jet<double, 4>;
+    for (const AntennaDamping<double>& d : {kVI, AntennaDamping<double>{5.4e-5, 1.0, 0.02, 1.0},
+                                            AntennaDamping<double>{0.0, 0.0, 0.046, 1.247},
+                                            AntennaDamping<double>{2.49e-4, 0.832, 0.0, 0.0}})
+        for (double w : {3.7, 16.1, 70.0, 100.6, 281.7, 314.0}) {
+            const AntennaDamping<J4> dj = {J4(d.zeta, 0), J4(d.alpha, 1), J4(d.gamma, 2), J4(d.lambda, 3)};
+            const Cx<J4> g = antenna_frf<J4>(AntennaLink(), dj, J4(w));
+            std::array<std::complex<double>, 4> a;
+            const std::complex<double> v = antenna_frf_with_gradient(AntennaLink(), d, w, &a);
+            const std::complex<double> m = antenna_frf(AntennaLink(), d, w);
+            EXPECT_LE(std::abs(v - m), 1e-12 * std::abs(m)) << "w " << w;
+            for (int i = 0; i < 4; ++i) {
+                const std::complex<double> ad(g.re.v[i], g.im.v[i]);
+                EXPECT_LE(std::abs(a[std::size_t(i)] - ad), 1e-8 * (std::abs(ad) + 1e-12)) << "w " << w << " i " << i;
+            }
+        }
+}
+
+TEST(AntennaFit, analytic_and_automatic_derivatives_give_the_same_fit)
+{
+    const Frf f = haro_synthetic_frf(kVI, haro_grid(94, 8000), 0.05, 2);
+    Frf g;
+    for (std::size_t i = 0; i < f.w.size(); i += 8) {
+        g.w.push_back(f.w[i]);
+        g.G.push_back(f.G[i]);
+    }
+    AntennaFitOptions o;
+    o.starts = 2;
+    const auto a = fit_antenna(g, AntennaStructure::V, o);
+    o.derivatives = Derivatives::Automatic;
+    const auto b = fit_antenna(g, AntennaStructure::V, o);
+    EXPECT_NEAR(a.cost / b.cost, 1.0, 1e-9);
+    for (std::size_t i = 0; i < a.params.size(); ++i) EXPECT_NEAR(a.params[i] / b.params[i], 1.0, 1e-5);
 }

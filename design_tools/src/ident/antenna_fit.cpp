@@ -4,6 +4,7 @@
 #include <ceres/ceres.h>
 
 #include <cmath>
+#include <complex>
 #include <cstring>
 #include <limits>
 #include <random>
@@ -73,6 +74,42 @@ double antenna_cost(const Frf& data, const AntennaDamping<double>& d, FrfWeighti
     return J;
 }
 
+std::complex<double> antenna_frf_with_gradient(const AntennaLink& link, const AntennaDamping<double>& d, double w,
+                                               std::array<std::complex<double>, 4>* grad)
+{
+    using C = std::complex<double>;
+    const double EI = link.EI();
+    const double lw = std::log(w);
+    const C sa = std::exp(d.alpha * lw) * C(std::cos(0.5 * M_PI * d.alpha), std::sin(0.5 * M_PI * d.alpha));
+    const C sl = std::exp(d.lambda * lw) * C(std::cos(0.5 * M_PI * d.lambda), std::sin(0.5 * M_PI * d.lambda));
+    const C I = 1.0 + d.zeta * sa;
+    const C X = -(link.rho / EI) * w * w + d.gamma * sl;
+    const C u = -X / I;
+    const C beta = std::sqrt(std::sqrt(u));
+    const C x = beta * link.L;
+    // sin, cos, sinh, cosh of x = a + j b from sin/cos/exp of a and b
+    const double a = x.real(), b = x.imag();
+    const double sa_ = std::sin(a), ca = std::cos(a), sb = std::sin(b), cb = std::cos(b);
+    const double ea = std::exp(a), eb = std::exp(b);
+    const double sha = 0.5 * (ea - 1.0 / ea), cha = 0.5 * (ea + 1.0 / ea);
+    const double shb = 0.5 * (eb - 1.0 / eb), chb = 0.5 * (eb + 1.0 / eb);
+    const C sx(sa_ * chb, ca * shb), cx(ca * chb, -sa_ * shb);
+    const C shx(sha * cb, cha * sb), chx(cha * cb, sha * sb);
+    const C N = sx * chx - cx * shx, D = 1.0 + cx * chx;
+    const C ND = N / D;
+    const C H = beta * ND;
+    if (grad) {
+        const C ell(lw, 0.5 * M_PI);  // d/da (j w)^a = (j w)^a ell
+        const C dH = ND + beta * link.L * (2.0 * sx * shx + ND * N) / D;
+        const C k = I * dH * beta / (4.0 * u);
+        // (dI, dX) for zeta, alpha, gamma, lambda
+        const C dI[4] = {sa, d.zeta * sa * ell, 0.0, 0.0};
+        const C dX[4] = {0.0, 0.0, sl, d.gamma * sl * ell};
+        for (int i = 0; i < 4; ++i) (*grad)[std::size_t(i)] = -EI * (dI[i] * H - k * (dX[i] + u * dI[i]) / I);
+    }
+    return -EI * I * H;
+}
+
 namespace {
 
 bool is_log_param(const char* name) { return !std::strcmp(name, "zeta") || !std::strcmp(name, "gamma"); }
@@ -103,6 +140,59 @@ struct FrfResidual {
     }
 };
 
+// The same residuals with the analytic Jacobian of antenna_frf_with_gradient
+// (value and gradient in one pass).
+class FrfResidualAnalytic : public ceres::CostFunction {
+public:
+    FrfResidualAnalytic(const Frf& data, const std::vector<double>& W, AntennaStructure s, const AntennaLink& link)
+        : data_(data), structure_(s), link_(link), n_(antenna_free_count(s))
+    {
+        for (double v : W) sqw_.push_back(std::sqrt(v));
+        const char* const* names = antenna_free_names(s);
+        // index of each free parameter in (zeta, alpha, gamma, lambda)
+        for (int i = 0; i < n_; ++i) {
+            const std::string nm = names[i];
+            slot_[i] = nm == "zeta" ? 0 : nm == "alpha" ? 1 : nm == "gamma" ? 2 : 3;
+            log_[i] = is_log_param(names[i]);
+        }
+        set_num_residuals(int(2 * data.w.size()));
+        mutable_parameter_block_sizes()->push_back(n_);
+    }
+
+    bool Evaluate(double const* const* x, double* r, double** jac) const override
+    {
+        double p[4];
+        for (int i = 0; i < n_; ++i) p[i] = log_[i] ? std::exp(x[0][i]) : x[0][i];
+        const AntennaDamping<double> d = antenna_damping<double>(structure_, p);
+        const bool want_jac = jac && jac[0];
+        std::array<std::complex<double>, 4> g;
+        for (std::size_t k = 0; k < data_.w.size(); ++k) {
+            const std::complex<double> e =
+                data_.G[k] - antenna_frf_with_gradient(link_, d, data_.w[k], want_jac ? &g : nullptr);
+            r[2 * k] = sqw_[k] * e.real();
+            r[2 * k + 1] = sqw_[k] * e.imag();
+            if (want_jac) {
+                for (int i = 0; i < n_; ++i) {
+                    // dr/dx = -sqrt(W) dG/dtheta dtheta/dx, dtheta/dx = theta for log parameters
+                    const std::complex<double> dg = g[std::size_t(slot_[i])] * (log_[i] ? p[i] : 1.0);
+                    jac[0][(2 * k) * std::size_t(n_) + std::size_t(i)] = -sqw_[k] * dg.real();
+                    jac[0][(2 * k + 1) * std::size_t(n_) + std::size_t(i)] = -sqw_[k] * dg.imag();
+                }
+            }
+        }
+        return true;
+    }
+
+private:
+    const Frf& data_;
+    std::vector<double> sqw_;
+    AntennaStructure structure_;
+    AntennaLink link_;
+    int n_;
+    int slot_[4] = {0, 0, 0, 0};
+    bool log_[4] = {false, false, false, false};
+};
+
 template <int N>
 ceres::CostFunction* make_cost(const Frf& data, const std::vector<double>& W, AntennaStructure s,
                                const AntennaLink& link)
@@ -127,6 +217,32 @@ void param_bounds(const char* name, const AntennaBounds& b, double& lo, double& 
 
 }  // namespace
 
+void antenna_box(AntennaStructure structure, const AntennaBounds& bounds, std::vector<double>& lo,
+                 std::vector<double>& hi)
+{
+    const int n = antenna_free_count(structure);
+    const char* const* names = antenna_free_names(structure);
+    lo.assign(std::size_t(n), 0.0);
+    hi.assign(std::size_t(n), 0.0);
+    for (int i = 0; i < n; ++i) param_bounds(names[i], bounds, lo[std::size_t(i)], hi[std::size_t(i)]);
+}
+
+std::vector<std::vector<double>> antenna_starts(AntennaStructure structure, const AntennaBounds& bounds, int starts,
+                                                unsigned seed)
+{
+    std::vector<double> lo, hi;
+    antenna_box(structure, bounds, lo, hi);
+    // The 53-bit conversion is written out so the sequence is the same on
+    // every standard library for a given seed.
+    std::mt19937_64 rng(seed);
+    auto uniform = [&rng]() { return double(rng() >> 11) * (1.0 / 9007199254740992.0); };
+    std::vector<std::vector<double>> x(std::size_t(std::max(starts, 0)), std::vector<double>(lo.size()));
+    for (std::size_t s = 0; s < x.size(); ++s)
+        for (std::size_t i = 0; i < lo.size(); ++i)
+            x[s][i] = s == 0 ? 0.5 * (lo[i] + hi[i]) : lo[i] + (hi[i] - lo[i]) * uniform();
+    return x;
+}
+
 AntennaFitResult fit_antenna(const Frf& data, AntennaStructure structure, const AntennaFitOptions& opt,
                              const std::function<void(int, double)>& on_start)
 {
@@ -141,14 +257,9 @@ AntennaFitResult fit_antenna(const Frf& data, AntennaStructure structure, const 
     const char* const* names = antenna_free_names(structure);
     const auto W = frf_weights(data.w, opt.weighting);
 
-    std::vector<double> lo(n), hi(n);
-    for (int i = 0; i < n; ++i) param_bounds(names[i], b, lo[i], hi[i]);
-
-    // Start points: the centre of the (log) box, then uniform draws. The
-    // 53-bit conversion is written out so the sequence is the same on every
-    // standard library for a given seed.
-    std::mt19937_64 rng(opt.seed);
-    auto uniform = [&rng]() { return double(rng() >> 11) * (1.0 / 9007199254740992.0); };
+    std::vector<double> lo, hi;
+    antenna_box(structure, b, lo, hi);
+    const std::vector<std::vector<double>> x0 = antenna_starts(structure, b, opt.starts, opt.seed);
 
     AntennaFitResult res;
     res.structure = structure;
@@ -156,11 +267,12 @@ AntennaFitResult fit_antenna(const Frf& data, AntennaStructure structure, const 
     double best = std::numeric_limits<double>::infinity();
     std::vector<double> xbest(n);
     for (int s = 0; s < opt.starts; ++s) {
-        std::vector<double> x(n);
-        for (int i = 0; i < n; ++i) x[i] = s == 0 ? 0.5 * (lo[i] + hi[i]) : lo[i] + (hi[i] - lo[i]) * uniform();
+        std::vector<double> x = x0[std::size_t(s)];
         ceres::Problem::Options popt;
         ceres::Problem problem(popt);
-        ceres::CostFunction* cf = n == 1   ? make_cost<1>(data, W, structure, opt.link)
+        ceres::CostFunction* cf = opt.derivatives == Derivatives::Analytic
+                                      ? new FrfResidualAnalytic(data, W, structure, opt.link)
+                                  : n == 1 ? make_cost<1>(data, W, structure, opt.link)
                                   : n == 2 ? make_cost<2>(data, W, structure, opt.link)
                                            : make_cost<4>(data, W, structure, opt.link);
         problem.AddResidualBlock(cf, nullptr, x.data());

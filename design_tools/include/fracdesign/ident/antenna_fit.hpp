@@ -11,9 +11,10 @@
 // Residual form for complex data: Ceres sees 2N real residuals
 //   r_2p = sqrt(W_p) Re(G_exp - G),  r_2p+1 = sqrt(W_p) Im(G_exp - G),
 // whose sum of squares is J (Ceres reports cost = J/2). G comes from the
-// issue-5 model (models/antenna.hpp), evaluated with ceres::Jet: automatic
-// derivatives. zeta and gamma, which span decades, are optimised as their
-// logarithms; alpha and lambda directly; all inside bounds.
+// issue-5 model (models/antenna.hpp). Derivatives: analytic (default, see
+// antenna_frf_with_gradient) or automatic (ceres::Jet through the model
+// template); both give the same fit. zeta and gamma, which span decades, are
+// optimised as their logarithms; alpha and lambda directly; all in bounds.
 //
 // Search: Levenberg-Marquardt from `starts` points (the first the centre of
 // the box, the others drawn uniformly in the box - log box for zeta, gamma -
@@ -23,6 +24,7 @@
 // variance s^2 = J_min/(2N - p) (each complex point counts as two real ones),
 // mapped back to natural parameters by the delta method.
 #pragma once
+#include <array>
 #include <complex>
 #include <functional>
 #include <string>
@@ -66,8 +68,11 @@ struct AntennaBounds {
     double lambda_lo = 0.05, lambda_hi = 1.95;
 };
 
+enum class Derivatives { Analytic, Automatic };
+
 struct AntennaFitOptions {
     FrfWeighting weighting = FrfWeighting::InverseOmega;
+    Derivatives derivatives = Derivatives::Analytic;
     AntennaBounds bounds;
     int starts = 8;             // multi-start count (>= 1)
     unsigned seed = 1;          // start generator seed: same seed, same result
@@ -96,10 +101,37 @@ struct AntennaFitResult {
     std::string full_report;           // Ceres FullReport of the best start
 };
 
+// The multi-start points of `fit_antenna` in its optimisation variables
+// (log zeta, log gamma, alpha, lambda; free parameters of `structure` only):
+// starts[0] is the centre of the box, the others uniform draws from a
+// mt19937_64 seeded with `seed`. Exposed so a reference solver can start
+// from exactly the same points (tests/bench/bench_ident).
+std::vector<std::vector<double>> antenna_starts(AntennaStructure structure, const AntennaBounds& bounds, int starts,
+                                                unsigned seed);
+// Box of the optimisation variables, same order.
+void antenna_box(AntennaStructure structure, const AntennaBounds& bounds, std::vector<double>& lo,
+                 std::vector<double>& hi);
+
 // Fits one structure. Throws std::invalid_argument for invalid data/options.
 // `on_start(i, J)` (optional) is called after each start.
 AntennaFitResult fit_antenna(const Frf& data, AntennaStructure structure, const AntennaFitOptions& opt,
                              const std::function<void(int, double)>& on_start = nullptr);
+
+// G(j w) of eq. (25) (corrected beta^4) and dG/d(zeta, alpha, gamma, lambda)
+// in one pass: the kernel of the analytic-derivative fit. It evaluates the
+// same formula as the model (models/antenna.hpp), written with real
+// sincos/exp so one pass costs about one model evaluation; the tests check
+// G against the model to 1e-12 and the gradient against automatic
+// derivatives of the model template. With I = 1 + zeta s^alpha,
+// X = (rho/EI) s^2 + gamma s^lambda, u = beta^4 = -X/I, x = beta L,
+// N = sin x cosh x - cos x sinh x, D = 1 + cos x cosh x, H = beta N/D:
+//   G = -EI I H,   dG = -EI (dI H + I H'(beta) beta/(4u) du),
+//   H'(beta) = N/D + beta L (2 sin x sinh x D + N^2)/D^2   (N' = 2 sin x sinh x, D' = -N)
+//   du = -(dX + u dI)/I,  d s^a/da = s^a (ln w + j pi/2).
+// G depends on beta^4 only (notes 000 sec. 2.6), so beta = sqrt(sqrt(u)).
+// `grad` may be null (value only).
+std::complex<double> antenna_frf_with_gradient(const AntennaLink& link, const AntennaDamping<double>& d, double w,
+                                               std::array<std::complex<double>, 4>* grad);
 
 // J of eq. (26) for given damping.
 double antenna_cost(const Frf& data, const AntennaDamping<double>& d, FrfWeighting weighting,
