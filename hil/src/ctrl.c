@@ -246,10 +246,15 @@ int hil_ctrl_on_frame(struct hil_ctrl *c, const struct hil_can_frame *f, struct 
     default: {
         uint8_t node, state;
         struct hil_emcy e;
-        if (hil_co_heartbeat_decode(f, &node, &state) == HIL_OK) {
+        int st_hb = hil_co_heartbeat_decode(f, &node, &state);
+        if (st_hb == HIL_OK) {
             c->rx.accepted++;
             c->hb_state[node] = state;
             return HIL_OK;
+        }
+        if (st_hb == HIL_E_FORMAT) { /* a heartbeat with no valid NMT state */
+            c->rx.bad_value++;
+            return HIL_E_FORMAT;
         }
         if (hil_co_emcy_decode(f, &node, &e) == HIL_OK && node != HIL_NODE_CTRL) {
             c->rx.accepted++;

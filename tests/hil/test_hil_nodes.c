@@ -662,6 +662,11 @@ static void test_ctrl_counts_missed_inputs_and_ignores_malformed(void **state)
     f.dlc = 7;
     assert_int_equal(hil_ctrl_on_frame(&c, &f, &o), HIL_E_DLC);
     assert_int_equal(c.have_tpdo1, 0);
+    hil_co_heartbeat_encode(&f, HIL_NODE_DRIVE, HIL_NMT_STATE_OPERATIONAL);
+    f.data[0] = 0x33; /* not an NMT state */
+    assert_int_equal(hil_ctrl_on_frame(&c, &f, &o), HIL_E_FORMAT);
+    assert_int_equal(c.rx.bad_value, 1);
+    assert_int_equal(c.hb_state[HIL_NODE_DRIVE], 0xFF);
     o.n = 0;
     hil_ctrl_deadline(&c, &o);
     assert_int_equal(c.missed_inputs, 1);
