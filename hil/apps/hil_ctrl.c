@@ -98,8 +98,9 @@ int main(int argc, char **argv)
     }
     app_parse(argc, argv, &o,
               "usage: hil_ctrl [options]\n"
-              "The controller node in real time: NMT start, SYNC every T, PD test law,\n"
-              "IMU watchdog; prints HIL_STATS and HIL_JITTER (p50/p99/max in us).\n"
+              "The controller node: NMT master, SYNC every T (wall clock, or --lockstep), the\n"
+              "scenario's ctrl.law (pd: test law with IMU watchdog; armctrl_a: plc_blocks ArmCtrl\n"
+              "Exp. A in the task runtime); prints HIL_STATS and HIL_JITTER (p50/p99/max in us).\n"
               "  --cycles N          cycles to run (default: duration / T from the scenario)\n"
               "  --csv FILE          signals as the controller saw them, one row per cycle\n"
               "  --lockstep          pace on the bus (wait for the drive, plant and IMU) instead\n"

@@ -1,4 +1,4 @@
-/* hil_plant: the emulated arm (plant \"rigid\": the named TEST plant, a rigid inertia with viscous friction) as a bus node. */
+/* hil_plant: the emulated arm (hil/plant.h: the "rigid" test plant or "twomass") as a bus node. */
 #include "app_common.h"
 #include "hil/canopen.h"
 #include "hil/plant.h"
@@ -27,7 +27,7 @@ int main(int argc, char **argv)
     int st;
     app_parse(argc, argv, &o,
               "usage: hil_plant [options]\n"
-              "the emulated arm (plant \"rigid\": the named TEST plant, a rigid inertia with viscous friction).\n"
+              "the emulated arm: plant = rigid (a TEST plant) or twomass (seed 004 rbFFC model), from the scenario.\n"
               "Runs until the bus has been idle for --idle-exit seconds, then prints HIL_STATS.\n"
               "  --csv FILE          truth per step: t, tip_angle, tip_velocity, torque_actual\n");
     boot.n = 0;
