@@ -4,6 +4,7 @@
 
 #include <sys/wait.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -119,4 +120,27 @@ TEST(IdentCli, servo_idim_on_emps_and_usage_errors)
     EXPECT_EQ(run("frf --frf x.csv --weighting log").rc, 2);
     EXPECT_EQ(run("bogus").rc, 2);
     EXPECT_EQ(run("servo --mat " + mat + " --method oe").rc, 2);  // oe alone needs --init
+}
+
+TEST(IdentCli, frf_from_time_data_goes_through_welch)
+{
+    // y = 0.5 x: a flat FRF of 0.5 the antenna model cannot follow; the point
+    // is the time-data path (Welch grid, wmin/wmax band), not the fit quality.
+    io::SignalTable t;
+    t.names = {"theta_m", "torque"};
+    std::vector<double> x(4000), y(4000);
+    for (std::size_t k = 0; k < x.size(); ++k) {
+        t.t.push_back(k * 1e-3);
+        x[k] = std::sin(0.37 * k) + std::sin(0.011 * k * k * 1e-3);
+        y[k] = 0.5 * x[k];
+    }
+    t.columns = {x, y};
+    const std::string path = kDir + "/test_ident_cli_time.csv";
+    io::write_signal_csv(path, t);
+    const CliRun r = run("frf --time " + path + " --structure I --weighting 1/w --starts 1 --wmax 300 --json");
+    ASSERT_NE(r.out.find("frac.ident.frf"), std::string::npos) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    // 8 segments of floor(4000/(8 - 7*0.15)) = 575 samples: bins 1..27 lie below 300 rad/s
+    EXPECT_EQ(j["points"].get<int>(), int(std::floor(300.0 / (2 * M_PI * 1000.0 / 575))));
+    EXPECT_EQ(run("frf --time " + path + " --frf x.csv").rc, 2);
 }
