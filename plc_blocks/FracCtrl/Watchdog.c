@@ -8,14 +8,14 @@
  * at RampRate [Nm/s] (a step change of the setpoint would excite the
  * ~3 Hz first beam mode, seed 004 part 2, 9.2) and stays at zero until a
  * rising edge of Acknowledge while the sensor is fresh and the torque
- * finite. The ramp is the block's only arithmetic: a bounded rate limiter
- * towards zero, the fault reaction itself, not a control law.
+ * finite. The ramp is libfrac's bounded-rate ramp (frac/ramp.h).
  *
- * Cost: O(1) per call, no libfrac object, no allocation.
+ * Cost: O(1) per call, no allocation.
  */
 #include "FracCtrl.h"
 #include "fracctrl_status.h"
 #include "frac/frac_types.h"
+#include "frac/ramp.h"
 
 static UINT watchdog_check(const WatchdogParType *p)
 {
@@ -31,7 +31,7 @@ void Watchdog(struct Watchdog* inst)
     WatchdogInternalType *in = &inst->Internal;
     int enable_edge;
     BOOL ack_edge;
-    REAL step;
+    frac_real ramped;
 
     if (!inst->Enable) {
         fracctrl_disable(&in->Fb);
@@ -94,14 +94,12 @@ void Watchdog(struct Watchdog* inst)
     }
 
     if (in->Latched) {
-        step = in->Par.RampRate * in->Par.CycleTime;
-        if (in->LastTorque > step) {
-            in->LastTorque -= step;
-        } else if (in->LastTorque < -step) {
-            in->LastTorque += step;
-        } else {
-            in->LastTorque = 0.0f;
-        }
+        /* Parameters were validated at Update and LastTorque is always
+         * finite, so the ramp cannot fail here (and would fall to zero). */
+        ramped = FRAC_R(0.0);
+        (void)frac_ramp_step((frac_real)in->LastTorque, FRAC_R(0.0), (frac_real)in->Par.RampRate,
+                             (frac_real)in->Par.CycleTime, &ramped);
+        in->LastTorque = (REAL)ramped;
         inst->RampActive = in->LastTorque != 0.0f;
     } else {
         in->LastTorque = inst->TorqueIn;
