@@ -331,6 +331,47 @@ static void test_imu_reading_leaves_four_acquisitions_after_sampling(void **stat
     }
 }
 
+/* Acquisition index at which each of the first readings leaves the IMU. */
+static int reading_departures(double jitter_prob, uint64_t seed, int *dep, int n)
+{
+    struct hil_imu m;
+    struct hil_imu_params p;
+    struct hil_out o;
+    struct hil_can_frame f = nmt_start();
+    int j, got = 0;
+    hil_imu_params_default(&p);
+    p.jitter_prob = jitter_prob;
+    p.seed = seed;
+    o.n = 0;
+    hil_imu_init(&m, &p, &o);
+    hil_imu_on_frame(&m, &f, &o);
+    for (j = 1; j <= 400 && got < n; j++) {
+        int i;
+        o.n = 0;
+        acquire(&m, 0.0, &o);
+        for (i = 0; i < o.n && got < n; i++)
+            if (o.f[i].id == HIL_COB_TPDO1(HIL_NODE_IMU))
+                dep[got++] = j;
+    }
+    return got;
+}
+
+static void test_imu_jitter_delays_readings_by_one_acquisition(void **state)
+{
+    int a[40], b[40], c[40], k, late = 0;
+    (void)state;
+    assert_int_equal(reading_departures(0.0, 1, a, 40), 40);
+    assert_int_equal(reading_departures(1.0, 1, b, 40), 40);
+    assert_int_equal(reading_departures(0.5, 3, c, 40), 40);
+    for (k = 0; k < 40; k++) {
+        assert_int_equal(a[k], 4 * (k + 2));     /* sampled at 4 (k + 1), sent 4 later */
+        assert_int_equal(b[k], 4 * (k + 2) + 1); /* always one acquisition late */
+        assert_true(c[k] == a[k] || c[k] == b[k]);
+        late += c[k] == b[k];
+    }
+    assert_true(late > 5 && late < 35); /* seeded coin, both outcomes */
+}
+
 static void test_imu_noise_is_seeded_and_quantized(void **state)
 {
     struct hil_imu a, b;
@@ -686,6 +727,7 @@ int main(void)
         cmocka_unit_test(test_drive_counts_and_ignores_malformed_frames),
         cmocka_unit_test(test_drive_encoder_counts_with_its_resolution_and_differences_velocity),
         cmocka_unit_test(test_imu_reading_leaves_four_acquisitions_after_sampling),
+        cmocka_unit_test(test_imu_jitter_delays_readings_by_one_acquisition),
         cmocka_unit_test(test_imu_noise_is_seeded_and_quantized),
         cmocka_unit_test(test_imu_saturates_and_flags_out_of_range_rates),
         cmocka_unit_test(test_rigid_plant_matches_closed_form_under_constant_torque),
