@@ -326,8 +326,8 @@ int hil_rig_cycle(struct hil_rig *r)
     if (!r)
         return HIL_E_ARG;
     r->slot = 0;
-    tip_angle = r->plant.theta;
-    tip_rate = r->plant.omega;
+    tip_angle = r->plant.psi;
+    tip_rate = r->plant.psi_d;
     out.n = 0;
     hil_ctrl_tick(&r->ctrl, &out);
     if ((st = enqueue(r, &out, FROM_CTRL)) != HIL_OK)
