@@ -4,7 +4,8 @@
 # exactly: same controller signals cycle by cycle, same number of frames, and
 # the logger's log holds every frame the nodes sent; the same through the
 # one-line launcher hil_bench --processes, truth columns included.
-# usage: udp_lockstep_matches_bench.sh BUILD_DIR WORK_DIR SCENARIO
+# usage: udp_lockstep_matches_bench.sh BUILD_DIR WORK_DIR SCENARIO [SCENARIO2]
+# (SCENARIO2: one more scenario for the hil_bench --processes comparison)
 set -euo pipefail
 bin=$(cd "${1:?usage: udp_lockstep_matches_bench.sh BUILD_DIR WORK_DIR SCENARIO}" && pwd)/hil
 work=${2:?}
@@ -41,13 +42,17 @@ grep -q 'step_timeouts=0' "$work/ctrl.txt" || { echo "FAIL: a lockstep wait time
 # The one-line launcher: hil_bench --processes writes the same signals.csv as
 # the in-process bench (truth from the plant process joined row by row); the
 # drive's torque travels as float32 to the plant, so that column agrees to 1e-4.
-"$bin/hil_bench" --processes --scenario "$scen" --out "$work/procs" > /dev/null
-if ! diff <(cut -d, -f1-8,10 "$work/procs/signals.csv") <(cut -d, -f1-8,10 "$work/bench/signals.csv") > "$work/diff2.txt"; then
-  echo "FAIL: hil_bench --processes signals differ from the in-process bench:"; head -n 10 "$work/diff2.txt"; status=1
-elif ! paste -d, <(cut -d, -f9 "$work/procs/signals.csv") <(cut -d, -f9 "$work/bench/signals.csv") |
-     awk -F, 'NR > 1 && ($1 - $2 > 1e-4 || $2 - $1 > 1e-4) { bad = 1 } END { exit bad }'; then
-  echo "FAIL: torque_actual differs by more than 1e-4 Nm"; status=1
-else
-  echo "hil_bench --processes: signals.csv (controller view and truth) identical to the in-process bench"
-fi
+for extra in "$scen" ${4:-}; do
+  name=$(basename "$extra" .txt)
+  "$bin/hil_bench" --processes --scenario "$extra" --out "$work/procs-$name" > /dev/null
+  "$bin/hil_bench" --scenario "$extra" --out "$work/bench-$name" > /dev/null
+  if ! diff <(cut -d, -f1-8,10 "$work/procs-$name/signals.csv") <(cut -d, -f1-8,10 "$work/bench-$name/signals.csv") > "$work/diff-$name.txt"; then
+    echo "FAIL: $name: hil_bench --processes signals differ from the in-process bench:"; head -n 10 "$work/diff-$name.txt"; status=1
+  elif ! paste -d, <(cut -d, -f9 "$work/procs-$name/signals.csv") <(cut -d, -f9 "$work/bench-$name/signals.csv") |
+       awk -F, 'NR > 1 && ($1 - $2 > 1e-4 || $2 - $1 > 1e-4) { bad = 1 } END { exit bad }'; then
+    echo "FAIL: $name: torque_actual differs by more than 1e-4 Nm"; status=1
+  else
+    echo "$name: hil_bench --processes signals.csv (controller view and truth) identical to the in-process bench"
+  fi
+done
 exit $status
