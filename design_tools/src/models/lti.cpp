@@ -82,7 +82,7 @@ Eigen::VectorXcd StateSpace::siso_zeros(Eigen::Index i, Eigen::Index j) const
     const double scale = std::max(1.0, P.cwiseAbs().maxCoeff());
     std::vector<std::complex<double>> z;
     for (Eigen::Index k = 0; k < al.size(); ++k)
-        if (std::abs(be[k]) > 1e-12 * std::abs(al[k]) / scale && std::abs(be[k]) > 0) z.push_back(al[k] / be[k]);
+        if (std::abs(be[k]) * scale > 1e-12 * std::abs(al[k])) z.push_back(al[k] / be[k]);  // else infinite
     Eigen::VectorXcd out(static_cast<Eigen::Index>(z.size()));
     for (size_t k = 0; k < z.size(); ++k) out[static_cast<Eigen::Index>(k)] = z[k];
     return out;
