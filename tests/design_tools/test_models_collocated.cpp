@@ -1,6 +1,7 @@
 // test_models_collocated.cpp - seed 002's collocated plant (38)-(46) and seed 001's fractional process.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "fracdesign/models/collocated.hpp"
@@ -80,4 +81,32 @@ TEST(FoProcess, bad_parameters_are_refused_with_the_field_named)
     p = feliu_benftima_robot();
     p.lambda = 2.5;
     EXPECT_THROW(p.validate(), std::invalid_argument);
+}
+
+TEST(CollocatedModes, pzi_product_form_has_positive_residues_and_equal_response)
+{
+    // Lemma 1 on the robot: the product form (42) gives the residues k1, k2
+    const CollocatedPlant p = collocated_plant(0.12);
+    const CollocatedModes m = pzi_to_modes(p.b, {p.a1, p.a2}, {p.z1});
+    EXPECT_NEAR(m.k[0], p.k1, 1e-12);
+    EXPECT_NEAR(m.k[1], p.k2, 1e-12);
+    // five interlaced modes: all residues positive, and the sum (22) equals the product (2)
+    const std::vector<double> a = {1.0, 4.0, 9.0, 30.0, 100.0}, z = {2.0, 6.0, 20.0, 50.0};
+    const CollocatedModes f = pzi_to_modes(3.0, a, z);
+    for (double k : f.k) EXPECT_GT(k, 0.0);
+    for (double w : {0.5, 3.0, 25.0, 200.0}) {
+        std::complex<double> prod = 3.0;
+        const std::complex<double> s2 = -w * w;
+        for (double zi : z) prod *= s2 + zi * zi;
+        for (double ai : a) prod /= s2 + ai * ai;
+        EXPECT_LT(std::abs(modal_P(f, w) - prod), 1e-12 * std::abs(prod)) << w;
+        EXPECT_LT(std::abs(modal_state_space(f).frequency_response(w)(0, 0) - prod), 1e-9 * std::abs(prod));
+    }
+    // broken interlacing (a zero above the next pole): some residue is not positive
+    const CollocatedModes br = pzi_to_modes(3.0, {1.0, 4.0, 9.0}, {5.0, 6.0});
+    EXPECT_LE(std::min({br.k[0], br.k[1], br.k[2]}), 0.0);
+    EXPECT_THROW(pzi_to_modes(1.0, {1.0, 2.0}, {}), std::invalid_argument);
+    CollocatedModes bad = f;
+    bad.zeta[2] = -0.1;
+    EXPECT_THROW(modal_state_space(bad), std::invalid_argument);
 }

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace fracdesign {
 
@@ -30,32 +31,87 @@ CollocatedPlant collocated_plant(double m2)
     return p;
 }
 
-std::complex<double> collocated_P(const CollocatedPlant& p, double w, bool damped)
+void CollocatedModes::validate() const
+{
+    auto bad = [](const std::string& m) { throw std::invalid_argument("collocated modes: " + m); };
+    if (a.empty()) bad("a must not be empty");
+    if (k.size() != a.size()) bad("k must have one residue per mode");
+    if (zeta.size() != a.size()) bad("zeta must have one damping ratio per mode");
+    for (size_t i = 0; i < a.size(); ++i) {
+        if (!std::isfinite(a[i]) || a[i] <= 0) bad("a[" + std::to_string(i) + "] must be finite and > 0");
+        if (!std::isfinite(k[i])) bad("k[" + std::to_string(i) + "] must be finite");
+        if (!std::isfinite(zeta[i]) || zeta[i] < 0) bad("zeta[" + std::to_string(i) + "] must be finite and >= 0");
+    }
+}
+
+CollocatedModes pzi_to_modes(double b, const std::vector<double>& a, const std::vector<double>& z)
+{
+    if (z.size() + 1 != a.size()) throw std::invalid_argument("collocated modes: z must have n - 1 zeros for n poles");
+    CollocatedModes m;
+    m.a = a;
+    m.zeta.assign(a.size(), 0.0);
+    for (size_t i = 0; i < a.size(); ++i) {
+        // residue of P in the variable s^2 at s^2 = -a_i^2 (Lemma 1)
+        double k = b;
+        for (double zj : z) k *= zj * zj - a[i] * a[i];
+        for (size_t j = 0; j < a.size(); ++j)
+            if (j != i) k /= a[j] * a[j] - a[i] * a[i];
+        m.k.push_back(k);
+    }
+    m.validate();
+    return m;
+}
+
+std::complex<double> modal_P(const CollocatedModes& m, double w)
 {
     const std::complex<double> s(0.0, w);
-    const double z1 = damped ? p.zeta1 : 0.0, z2 = damped ? p.zeta2 : 0.0;
-    return p.k1 / (s * s + 2.0 * z1 * p.a1 * s + p.a1 * p.a1) + p.k2 / (s * s + 2.0 * z2 * p.a2 * s + p.a2 * p.a2);
+    std::complex<double> p = 0.0;
+    for (size_t i = 0; i < m.a.size(); ++i) p += m.k[i] / (s * s + 2.0 * m.zeta[i] * m.a[i] * s + m.a[i] * m.a[i]);
+    return p;
+}
+
+StateSpace modal_state_space(const CollocatedModes& m)
+{
+    m.validate();
+    const Eigen::Index n = static_cast<Eigen::Index>(m.a.size());
+    StateSpace ss;
+    ss.A = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+    ss.B = Eigen::MatrixXd::Zero(2 * n, 1);
+    ss.C = Eigen::MatrixXd::Zero(1, 2 * n);
+    ss.D = Eigen::MatrixXd::Zero(1, 1);
+    for (Eigen::Index i = 0; i < n; ++i) {
+        const size_t u = static_cast<size_t>(i);
+        ss.A(2 * i, 2 * i + 1) = 1.0;
+        ss.A(2 * i + 1, 2 * i) = -m.a[u] * m.a[u];
+        ss.A(2 * i + 1, 2 * i + 1) = -2.0 * m.zeta[u] * m.a[u];
+        ss.B(2 * i + 1, 0) = 1.0;
+        ss.C(0, 2 * i) = m.k[u];
+        ss.states.push_back("q" + std::to_string(i + 1));
+        ss.states.push_back("q" + std::to_string(i + 1) + "_dot");
+    }
+    ss.inputs = {"u (P input)"};
+    ss.outputs = {"P output"};
+    return ss;
+}
+
+CollocatedModes collocated_modes(const CollocatedPlant& p, bool damped)
+{
+    CollocatedModes m;
+    m.a = {p.a1, p.a2};
+    m.k = {p.k1, p.k2};
+    m.zeta = {damped ? p.zeta1 : 0.0, damped ? p.zeta2 : 0.0};
+    return m;
+}
+
+std::complex<double> collocated_P(const CollocatedPlant& p, double w, bool damped)
+{
+    return modal_P(collocated_modes(p, damped), w);
 }
 
 StateSpace collocated_state_space(const CollocatedPlant& p, bool damped)
 {
-    StateSpace ss;
-    ss.A = Eigen::MatrixXd::Zero(4, 4);
-    ss.B = Eigen::MatrixXd::Zero(4, 1);
-    ss.C = Eigen::MatrixXd::Zero(1, 4);
-    ss.D = Eigen::MatrixXd::Zero(1, 1);
-    const double a[2] = {p.a1, p.a2}, k[2] = {p.k1, p.k2};
-    const double z[2] = {damped ? p.zeta1 : 0.0, damped ? p.zeta2 : 0.0};
-    for (int i = 0; i < 2; ++i) {
-        ss.A(2 * i, 2 * i + 1) = 1.0;
-        ss.A(2 * i + 1, 2 * i) = -a[i] * a[i];
-        ss.A(2 * i + 1, 2 * i + 1) = -2.0 * z[i] * a[i];
-        ss.B(2 * i + 1, 0) = 1.0;
-        ss.C(0, 2 * i) = k[i];
-    }
-    ss.inputs = {"u (P input; Gamma_c = s^2 G_m P theta_m*)"};
-    ss.outputs = {"P output"};
-    ss.states = {"q1", "q1_dot", "q2", "q2_dot"};
+    StateSpace ss = modal_state_space(collocated_modes(p, damped));
+    ss.inputs = {"u (P input; Gamma_c = Ghat P theta_m, (43))"};
     return ss;
 }
 
