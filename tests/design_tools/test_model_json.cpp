@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <sys/wait.h>
 
 #include "fracdesign/model_json.hpp"
 
@@ -176,4 +177,28 @@ TEST(ModelJson, cli_reads_a_model_file_and_reports_a_bad_one_in_one_line)
         EXPECT_EQ(std::count(msg.begin(), msg.end(), '\n'), 1) << msg;
         EXPECT_NE(msg.find(std::string(f) == "bad" ? "'m2_lb'" : "broken.json"), std::string::npos) << msg;
     }
+}
+
+TEST(ModelJson, cli_refuses_bad_parameters_with_usage_errors)
+{
+    const std::string exe = FRACDESIGN_EXE;
+    auto rc = [&](const std::string& args) {
+        const int r = std::system((exe + " model " + args + " > /dev/null 2>&1").c_str());
+        return WIFEXITED(r) ? WEXITSTATUS(r) : -1;
+    };
+    EXPECT_EQ(rc("beam --N 9 --modes 3"), 0);
+    EXPECT_EQ(rc("arm --full --modes 2 --json"), 0);
+    EXPECT_EQ(rc("antenna --structure V --gamma 0.04 --lambda 1.2"), 0);
+    EXPECT_EQ(rc("foprocess --lambda 1.5 --w 1,2"), 0);
+    EXPECT_EQ(rc("robot"), 2);                           // unknown kind
+    EXPECT_EQ(rc("beam --N 1"), 2);                      // N < 2
+    EXPECT_EQ(rc("beam --collocation chebyshev"), 2);    // unknown node set
+    EXPECT_EQ(rc("beam --Nn 9"), 2);                     // typo in an option
+    EXPECT_EQ(rc("collocated --w 10,-1"), 2);            // frequency <= 0
+    EXPECT_EQ(rc("antenna --structure VII"), 2);         // unknown structure
+    EXPECT_EQ(rc("antenna --structure I --alpha 0.5"), 2);  // fixed by Table 2
+    EXPECT_EQ(rc("beam --L -1"), 1);                     // negative length (model validation)
+    EXPECT_EQ(rc("collocated --m2 0"), 1);               // tip mass must be > 0
+    EXPECT_EQ(rc("foprocess --T nan"), 2);               // not a finite number
+    EXPECT_EQ(rc("arm --shifts 16,16,16"), 1);           // Krylov basis loses rank
 }
