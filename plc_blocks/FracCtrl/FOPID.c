@@ -16,7 +16,7 @@
 typedef char fopid_check_aw[((int)fracAW_NONE == (int)FRAC_FOPID_AW_NONE && (int)fracAW_CLAMP == (int)FRAC_FOPID_AW_CLAMP
     && (int)fracAW_BACKCALC == (int)FRAC_FOPID_AW_BACKCALC) ? 1 : -1];
 
-static int fopid_load(struct FOPID* inst, frac_fopid *fresh, UDINT bank)
+static int fopid_init(struct FOPID* inst, frac_fopid *fresh, UDINT bank)
 {
     const FOPIDParType *p = &inst->Parameters;
     frac_fopid_params prm;
@@ -47,35 +47,40 @@ static int fopid_load(struct FOPID* inst, frac_fopid *fresh, UDINT bank)
     return frac_fopid_init(fresh, &prm, inst->Storage[bank], (size_t)fracFOPID_STORAGE_LEN);
 }
 
-void FOPID(struct FOPID* inst)
+static int fopid_load(void *vinst, int enable_edge)
 {
-    int enable_edge, st;
-    frac_real u;
+    struct FOPID *inst = (struct FOPID *)vinst;
+    UDINT bank = fracctrl_spare_bank(&inst->Fb, inst->Bank);
+    frac_fopid fresh;
+    int st = fopid_init(inst, &fresh, bank);
+    (void)enable_edge;
+    if (st == FRAC_OK) {
+        inst->Pid = fresh;
+        inst->Bank = bank;
+        inst->ManualOld = 0; /* a fresh controller starts in automatic mode */
+    }
+    return st;
+}
 
-    if (!inst->Enable) {
-        fracctrl_disable(&inst->Fb);
-        fracctrl_report_disabled(&inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
-        inst->Y = 0.0f;
-        inst->Saturated = 0;
+static void fopid_hold(void *vinst, int disabled)
+{
+    struct FOPID *inst = (struct FOPID *)vinst;
+    inst->Y = 0.0f;
+    inst->Saturated = 0;
+    if (disabled) {
         inst->ResetOld = 0;
         inst->ManualOld = 0;
-        return;
     }
-    if (fracctrl_load_edge(&inst->Fb, inst->Enable, inst->Update, &enable_edge)) {
-        frac_fopid fresh;
-        UDINT bank = inst->Fb.ParOk ? 1u - inst->Bank : inst->Bank;
-        st = fopid_load(inst, &fresh, bank);
-        fracctrl_par_result(&inst->Fb, fracctrl_status_id(st), enable_edge);
-        if (st == FRAC_OK) {
-            inst->Pid = fresh;
-            inst->Bank = bank;
-            inst->ManualOld = 0; /* a fresh controller starts in automatic mode */
-        }
-    }
-    if (!inst->Fb.ParOk) {
-        fracctrl_report_no_par(&inst->Fb, &inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
-        inst->Y = 0.0f;
-        inst->Saturated = 0;
+}
+
+static const fracctrl_block fopid_block = {fopid_load, fopid_hold};
+
+void FOPID(struct FOPID* inst)
+{
+    int st;
+    frac_real u;
+
+    if (!FRACCTRL_ENTER(&fopid_block, inst)) {
         return;
     }
     if (inst->Reset && !inst->ResetOld) {
@@ -92,5 +97,5 @@ void FOPID(struct FOPID* inst)
     st = frac_fopid_step(&inst->Pid, (frac_real)inst->W, (frac_real)inst->X, &u);
     inst->Y = (REAL)u;
     inst->Saturated = st == FRAC_W_SATURATED;
-    fracctrl_report(&inst->Fb, st, &inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
+    FRACCTRL_OUTPUTS(inst, st);
 }

@@ -16,7 +16,7 @@
 #include "fracctrl_status.h"
 #include "frac/fodamp.h"
 
-static int fracdamp_load(struct FracDamp* inst, UDINT bank)
+static int fracdamp_init(struct FracDamp* inst, UDINT bank)
 {
     const FracDampParType *p = &inst->Parameters;
     frac_fodamp_params prm;
@@ -44,29 +44,35 @@ static int fracdamp_load(struct FracDamp* inst, UDINT bank)
     return frac_fodamp_init(&inst->Damp[bank], &prm, inst->Storage[bank], (size_t)fracFODAMP_STORAGE_LEN);
 }
 
+static int fracdamp_load(void *vinst, int enable_edge)
+{
+    struct FracDamp *inst = (struct FracDamp *)vinst;
+    UDINT bank = fracctrl_spare_bank(&inst->Fb, inst->Bank);
+    int st = fracdamp_init(inst, bank);
+    (void)enable_edge;
+    if (st == FRAC_OK) {
+        inst->Bank = bank;
+    }
+    return st;
+}
+
+static void fracdamp_hold(void *vinst, int disabled)
+{
+    struct FracDamp *inst = (struct FracDamp *)vinst;
+    inst->Y = 0.0f;
+    if (disabled) {
+        inst->ResetOld = 0;
+    }
+}
+
+static const fracctrl_block fracdamp_block = {fracdamp_load, fracdamp_hold};
+
 void FracDamp(struct FracDamp* inst)
 {
-    int enable_edge, st;
+    int st;
     frac_real y;
 
-    if (!inst->Enable) {
-        fracctrl_disable(&inst->Fb);
-        fracctrl_report_disabled(&inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
-        inst->Y = 0.0f;
-        inst->ResetOld = 0;
-        return;
-    }
-    if (fracctrl_load_edge(&inst->Fb, inst->Enable, inst->Update, &enable_edge)) {
-        UDINT bank = inst->Fb.ParOk ? 1u - inst->Bank : inst->Bank;
-        st = fracdamp_load(inst, bank);
-        fracctrl_par_result(&inst->Fb, fracctrl_status_id(st), enable_edge);
-        if (st == FRAC_OK) {
-            inst->Bank = bank;
-        }
-    }
-    if (!inst->Fb.ParOk) {
-        fracctrl_report_no_par(&inst->Fb, &inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
-        inst->Y = 0.0f;
+    if (!FRACCTRL_ENTER(&fracdamp_block, inst)) {
         return;
     }
     if (inst->Reset && !inst->ResetOld) {
@@ -75,5 +81,5 @@ void FracDamp(struct FracDamp* inst)
     inst->ResetOld = inst->Reset;
     st = frac_fodamp_step(&inst->Damp[inst->Bank], (frac_real)inst->W, (frac_real)inst->X, &y);
     inst->Y = (REAL)y;
-    fracctrl_report(&inst->Fb, st, &inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
+    FRACCTRL_OUTPUTS(inst, st);
 }

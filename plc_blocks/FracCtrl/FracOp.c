@@ -17,10 +17,15 @@ typedef char fracop_check_method[((int)fracFO_GL == (int)FRAC_FO_GL && (int)frac
     && (int)fracFO_OUSTALOUP_REFINED == (int)FRAC_FO_OUSTALOUP_REFINED
     && (int)fracFO_CFE_TUSTIN == (int)FRAC_FO_CFE_TUSTIN && (int)fracFO_CFE_ALALAOUI == (int)FRAC_FO_CFE_ALALAOUI) ? 1 : -1];
 
-static int fracop_load(struct FracOp* inst, frac_fo *fresh, UDINT bank)
+static int fracop_load(void *vinst, int enable_edge)
 {
+    struct FracOp *inst = (struct FracOp *)vinst;
     const FracOpParType *p = &inst->Parameters;
+    UDINT bank = fracctrl_spare_bank(&inst->Fb, inst->Bank);
+    frac_fo fresh;
     frac_fo_params prm;
+    int st;
+    (void)enable_edge;
     prm.method = (int)p->Method;
     prm.order = (frac_real)p->Order;
     prm.ts = (frac_real)p->Ts;
@@ -31,34 +36,31 @@ static int fracop_load(struct FracOp* inst, frac_fo *fresh, UDINT bank)
     if (frac_fo_storage_len(&prm) > (size_t)fracFO_STORAGE_LEN) {
         return FRAC_E_STORAGE;
     }
-    return frac_fo_init(fresh, &prm, inst->Storage[bank], (size_t)fracFO_STORAGE_LEN);
+    st = frac_fo_init(&fresh, &prm, inst->Storage[bank], (size_t)fracFO_STORAGE_LEN);
+    if (st == FRAC_OK) {
+        inst->Op = fresh;
+        inst->Bank = bank;
+    }
+    return st;
 }
+
+static void fracop_hold(void *vinst, int disabled)
+{
+    struct FracOp *inst = (struct FracOp *)vinst;
+    inst->Y = 0.0f;
+    if (disabled) {
+        inst->ResetOld = 0;
+    }
+}
+
+static const fracctrl_block fracop_block = {fracop_load, fracop_hold};
 
 void FracOp(struct FracOp* inst)
 {
-    int enable_edge, st;
+    int st;
     frac_real y;
 
-    if (!inst->Enable) {
-        fracctrl_disable(&inst->Fb);
-        fracctrl_report_disabled(&inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
-        inst->Y = 0.0f;
-        inst->ResetOld = 0;
-        return;
-    }
-    if (fracctrl_load_edge(&inst->Fb, inst->Enable, inst->Update, &enable_edge)) {
-        frac_fo fresh;
-        UDINT bank = inst->Fb.ParOk ? 1u - inst->Bank : inst->Bank;
-        st = fracop_load(inst, &fresh, bank);
-        fracctrl_par_result(&inst->Fb, fracctrl_status_id(st), enable_edge);
-        if (st == FRAC_OK) {
-            inst->Op = fresh;
-            inst->Bank = bank;
-        }
-    }
-    if (!inst->Fb.ParOk) {
-        fracctrl_report_no_par(&inst->Fb, &inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
-        inst->Y = 0.0f;
+    if (!FRACCTRL_ENTER(&fracop_block, inst)) {
         return;
     }
     if (inst->Reset && !inst->ResetOld) {
@@ -67,5 +69,5 @@ void FracOp(struct FracOp* inst)
     inst->ResetOld = inst->Reset;
     st = frac_fo_step(&inst->Op, (frac_real)inst->X, &y);
     inst->Y = (REAL)y;
-    fracctrl_report(&inst->Fb, st, &inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
+    FRACCTRL_OUTPUTS(inst, st);
 }

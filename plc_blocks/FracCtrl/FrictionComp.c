@@ -13,46 +13,51 @@
 typedef char friction_check_model[((int)fracFRICTION_LINEAR == (int)FRAC_FRICTION_LINEAR
     && (int)fracFRICTION_ASYMMETRIC == (int)FRAC_FRICTION_ASYMMETRIC && (int)fracFRICTION_STRIBECK == (int)FRAC_FRICTION_STRIBECK) ? 1 : -1];
 
+static int friction_load(void *vinst, int enable_edge)
+{
+    struct FrictionComp *inst = (struct FrictionComp *)vinst;
+    const FrictionCompParType *p = &inst->Parameters;
+    frac_friction fresh;
+    frac_friction_params fp;
+    int st;
+    (void)enable_edge;
+    fp.model = (int)p->Model;
+    fp.k = (frac_real)p->K;
+    fp.b1 = (frac_real)p->B1;
+    fp.b0 = (frac_real)p->B0;
+    fp.b1n = (frac_real)p->B1n;
+    fp.b1p = (frac_real)p->B1p;
+    fp.b0n = (frac_real)p->B0n;
+    fp.b0p = (frac_real)p->B0p;
+    fp.b1s = (frac_real)p->B1s;
+    fp.b2s = (frac_real)p->B2s;
+    fp.b3s = (frac_real)p->B3s;
+    fp.v_s = (frac_real)p->Vs;
+    fp.delta = (frac_real)p->Delta;
+    st = frac_friction_init(&fresh, &fp);
+    if (st == FRAC_OK) {
+        inst->Friction = fresh;
+    }
+    return st;
+}
+
+static void friction_hold(void *vinst, int disabled)
+{
+    (void)disabled;
+    ((struct FrictionComp *)vinst)->Torque = 0.0f;
+}
+
+static const fracctrl_block friction_block = {friction_load, friction_hold};
+
 void FrictionComp(struct FrictionComp* inst)
 {
-    const FrictionCompParType *p = &inst->Parameters;
-    int enable_edge, st;
+    int st;
     frac_real tau;
 
-    if (!inst->Enable) {
-        fracctrl_disable(&inst->Fb);
-        fracctrl_report_disabled(&inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
-        inst->Torque = 0.0f;
-        return;
-    }
-    if (fracctrl_load_edge(&inst->Fb, inst->Enable, inst->Update, &enable_edge)) {
-        frac_friction fresh;
-        frac_friction_params fp;
-        fp.model = (int)p->Model;
-        fp.k = (frac_real)p->K;
-        fp.b1 = (frac_real)p->B1;
-        fp.b0 = (frac_real)p->B0;
-        fp.b1n = (frac_real)p->B1n;
-        fp.b1p = (frac_real)p->B1p;
-        fp.b0n = (frac_real)p->B0n;
-        fp.b0p = (frac_real)p->B0p;
-        fp.b1s = (frac_real)p->B1s;
-        fp.b2s = (frac_real)p->B2s;
-        fp.b3s = (frac_real)p->B3s;
-        fp.v_s = (frac_real)p->Vs;
-        fp.delta = (frac_real)p->Delta;
-        st = frac_friction_init(&fresh, &fp);
-        fracctrl_par_result(&inst->Fb, fracctrl_status_id(st), enable_edge);
-        if (st == FRAC_OK) {
-            inst->Friction = fresh;
-        }
-    }
-    if (!inst->Fb.ParOk) {
-        fracctrl_report_no_par(&inst->Fb, &inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
-        inst->Torque = 0.0f;
+    if (!FRACCTRL_ENTER(&friction_block, inst)) {
         return;
     }
     st = frac_friction_eval(&inst->Friction, (frac_real)inst->Velocity, &tau);
     inst->Torque = (REAL)tau;
-    fracctrl_report(&inst->Fb, st, &inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
+    FRACCTRL_OUTPUTS(inst, st);
 }

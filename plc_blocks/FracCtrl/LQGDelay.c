@@ -17,7 +17,7 @@
 
 typedef char lqg_check_storage[(fracLQG_STORAGE_LEN >= FRAC_LQG_STORAGE(FRAC_MAT_MAX, fracLQG_MAX_OUTPUTS)) ? 1 : -1];
 
-static int lqg_load(struct LQGDelay* inst, frac_lqg *fresh, UDINT bank)
+static int lqg_init(struct LQGDelay* inst, frac_lqg *fresh, UDINT bank)
 {
     const LQGDelayParType *p = &inst->Parameters;
     frac_lqg_params prm;
@@ -41,34 +41,39 @@ static int lqg_load(struct LQGDelay* inst, frac_lqg *fresh, UDINT bank)
     return frac_lqg_init(fresh, &prm, inst->Storage[bank], (size_t)fracLQG_STORAGE_LEN);
 }
 
+static int lqg_load(void *vinst, int enable_edge)
+{
+    struct LQGDelay *inst = (struct LQGDelay *)vinst;
+    UDINT bank = fracctrl_spare_bank(&inst->Fb, inst->Bank);
+    frac_lqg fresh;
+    int st = lqg_init(inst, &fresh, bank);
+    (void)enable_edge;
+    if (st == FRAC_OK) {
+        inst->Lqg = fresh;
+        inst->Bank = bank;
+    }
+    return st;
+}
+
+static void lqg_hold(void *vinst, int disabled)
+{
+    struct LQGDelay *inst = (struct LQGDelay *)vinst;
+    inst->U = 0.0f;
+    inst->FrictionEstimate = 0.0f;
+    if (disabled) {
+        inst->ResetOld = 0;
+    }
+}
+
+static const fracctrl_block lqg_block = {lqg_load, lqg_hold};
+
 void LQGDelay(struct LQGDelay* inst)
 {
-    int enable_edge, st;
+    int st;
     frac_real y_ref[fracLQG_MAX_OUTPUTS], y[fracLQG_MAX_OUTPUTS], u;
     size_t j;
 
-    if (!inst->Enable) {
-        fracctrl_disable(&inst->Fb);
-        fracctrl_report_disabled(&inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
-        inst->U = 0.0f;
-        inst->FrictionEstimate = 0.0f;
-        inst->ResetOld = 0;
-        return;
-    }
-    if (fracctrl_load_edge(&inst->Fb, inst->Enable, inst->Update, &enable_edge)) {
-        frac_lqg fresh;
-        UDINT bank = inst->Fb.ParOk ? 1u - inst->Bank : inst->Bank;
-        st = lqg_load(inst, &fresh, bank);
-        fracctrl_par_result(&inst->Fb, fracctrl_status_id(st), enable_edge);
-        if (st == FRAC_OK) {
-            inst->Lqg = fresh;
-            inst->Bank = bank;
-        }
-    }
-    if (!inst->Fb.ParOk) {
-        fracctrl_report_no_par(&inst->Fb, &inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
-        inst->U = 0.0f;
-        inst->FrictionEstimate = 0.0f;
+    if (!FRACCTRL_ENTER(&lqg_block, inst)) {
         return;
     }
     if (inst->Reset && !inst->ResetOld) {
@@ -82,5 +87,5 @@ void LQGDelay(struct LQGDelay* inst)
     st = frac_lqg_step(&inst->Lqg, (frac_real)inst->UStar, y_ref, y, &u);
     inst->U = (REAL)u;
     inst->FrictionEstimate = (REAL)frac_lqg_friction_estimate(&inst->Lqg);
-    fracctrl_report(&inst->Fb, st, &inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
+    FRACCTRL_OUTPUTS(inst, st);
 }

@@ -17,38 +17,42 @@
 typedef char lut1d_check_interp[((int)fracINTERP_LINEAR == (int)FRAC_LUT_LINEAR && (int)fracINTERP_CUBIC == (int)FRAC_LUT_CUBIC) ? 1 : -1];
 typedef char lut1d_check_range[((int)fracRANGE_CLAMP == (int)FRAC_LUT_CLAMP && (int)fracRANGE_EXTRAPOLATE == (int)FRAC_LUT_EXTRAPOLATE) ? 1 : -1];
 
+static int lut1d_load(void *vinst, int enable_edge)
+{
+    struct LUT1D *inst = (struct LUT1D *)vinst;
+    const LUT1DParType *p = &inst->Parameters;
+    frac_lut1 fresh;
+    int st;
+    (void)enable_edge;
+    if (p->pX) {
+        st = frac_lut1_init(&fresh, p->pX, p->pY, (size_t)p->N, (int)p->Interpolation, (int)p->Range, p->pSlopes);
+    } else {
+        st = frac_lut1_init_uniform(&fresh, (frac_real)p->X0, (frac_real)p->Dx, p->pY, (size_t)p->N,
+                                    (int)p->Interpolation, (int)p->Range, p->pSlopes);
+    }
+    if (st == FRAC_OK) {
+        inst->Lut = fresh;
+    }
+    return st;
+}
+
+static void lut1d_hold(void *vinst, int disabled)
+{
+    (void)disabled;
+    ((struct LUT1D *)vinst)->Y = 0.0f;
+}
+
+static const fracctrl_block lut1d_block = {lut1d_load, lut1d_hold};
+
 void LUT1D(struct LUT1D* inst)
 {
-    const LUT1DParType *p = &inst->Parameters;
-    int enable_edge, st;
+    int st;
     frac_real y;
 
-    if (!inst->Enable) {
-        fracctrl_disable(&inst->Fb);
-        fracctrl_report_disabled(&inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
-        inst->Y = 0.0f;
-        return;
-    }
-    if (fracctrl_load_edge(&inst->Fb, inst->Enable, inst->Update, &enable_edge)) {
-        frac_lut1 fresh;
-        if (p->pX) {
-            st = frac_lut1_init(&fresh, p->pX, p->pY, (size_t)p->N, (int)p->Interpolation, (int)p->Range,
-                                p->pSlopes);
-        } else {
-            st = frac_lut1_init_uniform(&fresh, (frac_real)p->X0, (frac_real)p->Dx, p->pY, (size_t)p->N,
-                                        (int)p->Interpolation, (int)p->Range, p->pSlopes);
-        }
-        fracctrl_par_result(&inst->Fb, fracctrl_status_id(st), enable_edge);
-        if (st == FRAC_OK) {
-            inst->Lut = fresh;
-        }
-    }
-    if (!inst->Fb.ParOk) {
-        fracctrl_report_no_par(&inst->Fb, &inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
-        inst->Y = 0.0f;
+    if (!FRACCTRL_ENTER(&lut1d_block, inst)) {
         return;
     }
     st = frac_lut1_eval(&inst->Lut, (frac_real)inst->X, &y);
     inst->Y = (REAL)y;
-    fracctrl_report(&inst->Fb, st, &inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
+    FRACCTRL_OUTPUTS(inst, st);
 }

@@ -10,41 +10,46 @@
 
 typedef char lut2d_check_range[((int)fracRANGE_CLAMP == (int)FRAC_LUT_CLAMP && (int)fracRANGE_EXTRAPOLATE == (int)FRAC_LUT_EXTRAPOLATE) ? 1 : -1];
 
+static int lut2d_load(void *vinst, int enable_edge)
+{
+    struct LUT2D *inst = (struct LUT2D *)vinst;
+    const LUT2DParType *p = &inst->Parameters;
+    frac_lut2 fresh;
+    frac_lut_axis_params a1, a2;
+    int st;
+    (void)enable_edge;
+    a1.x = p->pX1;
+    a1.n = (size_t)p->N1;
+    a1.x0 = (frac_real)p->X10;
+    a1.h = (frac_real)p->Dx1;
+    a2.x = p->pX2;
+    a2.n = (size_t)p->N2;
+    a2.x0 = (frac_real)p->X20;
+    a2.h = (frac_real)p->Dx2;
+    st = frac_lut2_init(&fresh, &a1, &a2, p->pZ, (int)p->Range);
+    if (st == FRAC_OK) {
+        inst->Lut = fresh;
+    }
+    return st;
+}
+
+static void lut2d_hold(void *vinst, int disabled)
+{
+    (void)disabled;
+    ((struct LUT2D *)vinst)->Y = 0.0f;
+}
+
+static const fracctrl_block lut2d_block = {lut2d_load, lut2d_hold};
+
 void LUT2D(struct LUT2D* inst)
 {
-    const LUT2DParType *p = &inst->Parameters;
-    int enable_edge, st;
+    int st;
     frac_real y;
 
-    if (!inst->Enable) {
-        fracctrl_disable(&inst->Fb);
-        fracctrl_report_disabled(&inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
-        inst->Y = 0.0f;
-        return;
-    }
-    if (fracctrl_load_edge(&inst->Fb, inst->Enable, inst->Update, &enable_edge)) {
-        frac_lut2 fresh;
-        frac_lut_axis_params a1, a2;
-        a1.x = p->pX1;
-        a1.n = (size_t)p->N1;
-        a1.x0 = (frac_real)p->X10;
-        a1.h = (frac_real)p->Dx1;
-        a2.x = p->pX2;
-        a2.n = (size_t)p->N2;
-        a2.x0 = (frac_real)p->X20;
-        a2.h = (frac_real)p->Dx2;
-        st = frac_lut2_init(&fresh, &a1, &a2, p->pZ, (int)p->Range);
-        fracctrl_par_result(&inst->Fb, fracctrl_status_id(st), enable_edge);
-        if (st == FRAC_OK) {
-            inst->Lut = fresh;
-        }
-    }
-    if (!inst->Fb.ParOk) {
-        fracctrl_report_no_par(&inst->Fb, &inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
-        inst->Y = 0.0f;
+    if (!FRACCTRL_ENTER(&lut2d_block, inst)) {
         return;
     }
     st = frac_lut2_eval(&inst->Lut, (frac_real)inst->X1, (frac_real)inst->X2, &y);
     inst->Y = (REAL)y;
-    fracctrl_report(&inst->Fb, st, &inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
+    FRACCTRL_OUTPUTS(inst, st);
 }

@@ -23,33 +23,37 @@ static void copy_field(plcstring *dst, const char *src, unsigned cap)
     dst[i] = '\0';
 }
 
-void ParTable(struct ParTable* inst)
+static int partable_load(void *vinst, int enable_edge)
 {
-    int enable_edge;
+    struct ParTable *inst = (struct ParTable *)vinst;
+    frac_ptable fresh;
+    int st = frac_ptable_open(&fresh, inst->pData, (unsigned long)inst->Size);
+    (void)enable_edge;
+    if (st == FRAC_OK) {
+        inst->Handle = fresh;
+        inst->Entries = (UDINT)fresh.n_entries;
+    }
+    inst->FailEntry = st == FRAC_OK ? -1 : (DINT)fresh.fail_entry;
+    copy_field(inst->FailField, st == FRAC_OK ? "" : fresh.fail_field, sizeof inst->FailField);
+    return st;
+}
 
-    if (!inst->Enable) {
-        fracctrl_disable(&inst->Fb);
-        fracctrl_report_disabled(&inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
-        inst->Entries = 0;
+static void partable_hold(void *vinst, int disabled)
+{
+    struct ParTable *inst = (struct ParTable *)vinst;
+    inst->Entries = 0;
+    if (disabled) {
         inst->FailEntry = -1;
         copy_field(inst->FailField, "", sizeof inst->FailField);
+    }
+}
+
+static const fracctrl_block partable_block = {partable_load, partable_hold};
+
+void ParTable(struct ParTable* inst)
+{
+    if (!FRACCTRL_ENTER(&partable_block, inst)) {
         return;
     }
-    if (fracctrl_load_edge(&inst->Fb, inst->Enable, inst->Update, &enable_edge)) {
-        frac_ptable fresh;
-        int st = frac_ptable_open(&fresh, inst->pData, (unsigned long)inst->Size);
-        fracctrl_par_result(&inst->Fb, fracctrl_status_id(st), enable_edge);
-        if (st == FRAC_OK) {
-            inst->Handle = fresh;
-            inst->Entries = (UDINT)fresh.n_entries;
-        }
-        inst->FailEntry = st == FRAC_OK ? -1 : (DINT)fresh.fail_entry;
-        copy_field(inst->FailField, st == FRAC_OK ? "" : fresh.fail_field, sizeof inst->FailField);
-    }
-    if (!inst->Fb.ParOk) {
-        fracctrl_report_no_par(&inst->Fb, &inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
-        inst->Entries = 0;
-        return;
-    }
-    fracctrl_report(&inst->Fb, FRAC_OK, &inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
+    FRACCTRL_OUTPUTS(inst, FRAC_OK);
 }

@@ -19,7 +19,7 @@ typedef char trajlut_check_segment[((int)fracSEG_BEFORE == (int)FRAC_TRAJLUT_BEF
     && (int)fracSEG_MOTION == (int)FRAC_TRAJLUT_MOTION && (int)fracSEG_POST == (int)FRAC_TRAJLUT_POST
     && (int)fracSEG_AFTER == (int)FRAC_TRAJLUT_AFTER) ? 1 : -1];
 
-static int trajlut_load(const TrajLUTParType *p, frac_trajlut *fresh)
+static int trajlut_init(const TrajLUTParType *p, frac_trajlut *fresh)
 {
     frac_trajlut_params prm;
     const frac_real *data[fracTRAJ_MAX_CHANNELS];
@@ -42,33 +42,42 @@ static int trajlut_load(const TrajLUTParType *p, frac_trajlut *fresh)
     return frac_trajlut_init(fresh, &prm, p->pSlopes);
 }
 
-void TrajLUT(struct TrajLUT* inst)
+static int trajlut_load(void *vinst, int enable_edge)
 {
-    int enable_edge, st, seg;
-    frac_real y[fracTRAJ_MAX_CHANNELS];
-    size_t c;
+    struct TrajLUT *inst = (struct TrajLUT *)vinst;
+    frac_trajlut fresh;
+    int st = trajlut_init(&inst->Parameters, &fresh);
+    (void)enable_edge;
+    if (st == FRAC_OK) {
+        inst->Traj = fresh;
+    }
+    return st;
+}
 
-    if (!inst->Enable) {
-        fracctrl_disable(&inst->Fb);
-        fracctrl_report_disabled(&inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
+/* Without parameters the outputs hold; disabled they return to the start. */
+static void trajlut_hold(void *vinst, int disabled)
+{
+    struct TrajLUT *inst = (struct TrajLUT *)vinst;
+    size_t c;
+    if (disabled) {
         for (c = 0; c < fracTRAJ_MAX_CHANNELS; c++) {
             inst->Y[c] = 0.0f;
         }
         inst->Segment = fracSEG_BEFORE;
         inst->Cycle = 0;
         inst->RestartOld = 0;
-        return;
     }
-    if (fracctrl_load_edge(&inst->Fb, inst->Enable, inst->Update, &enable_edge)) {
-        frac_trajlut fresh;
-        st = trajlut_load(&inst->Parameters, &fresh);
-        fracctrl_par_result(&inst->Fb, fracctrl_status_id(st), enable_edge);
-        if (st == FRAC_OK) {
-            inst->Traj = fresh;
-        }
-    }
-    if (!inst->Fb.ParOk) {
-        fracctrl_report_no_par(&inst->Fb, &inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
+}
+
+static const fracctrl_block trajlut_block = {trajlut_load, trajlut_hold};
+
+void TrajLUT(struct TrajLUT* inst)
+{
+    int st, seg;
+    frac_real y[fracTRAJ_MAX_CHANNELS];
+    size_t c;
+
+    if (!FRACCTRL_ENTER(&trajlut_block, inst)) {
         return;
     }
     if (inst->Restart && !inst->RestartOld) {
@@ -85,5 +94,5 @@ void TrajLUT(struct TrajLUT* inst)
         inst->Y[c] = (REAL)y[c];
     }
     inst->Segment = (FracTrajSegmentEnum)seg;
-    fracctrl_report(&inst->Fb, st, &inst->Valid, &inst->Busy, &inst->Error, &inst->StatusID);
+    FRACCTRL_OUTPUTS(inst, st);
 }

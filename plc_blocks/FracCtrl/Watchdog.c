@@ -17,60 +17,59 @@
 #include "frac/frac_types.h"
 #include "frac/ramp.h"
 
-static UINT watchdog_check(const WatchdogParType *p)
+static int watchdog_load(void *vinst, int enable_edge)
 {
+    struct Watchdog *inst = (struct Watchdog *)vinst;
+    WatchdogInternalType *in = &inst->Internal;
+    const WatchdogParType *p = &inst->Parameters;
+    int st = FRAC_OK;
     if (p->MaxStaleCycles < 1 || !FRAC_ISFINITE(p->RampRate) || !(p->RampRate > 0.0f)
         || !FRAC_ISFINITE(p->CycleTime) || !(p->CycleTime > 0.0f)) {
-        return fracERR_PARAM;
+        st = FRAC_E_PARAM;
+    } else {
+        in->Par = *p;
     }
-    return fracSTAT_OK;
+    if (enable_edge) {
+        in->Latched = 0;
+        in->LastTorque = 0.0f;
+        in->AckOld = inst->Acknowledge;
+    }
+    return st;
 }
+
+static void watchdog_hold(void *vinst, int disabled)
+{
+    struct Watchdog *inst = (struct Watchdog *)vinst;
+    WatchdogInternalType *in = &inst->Internal;
+    inst->TorqueOut = 0.0f;
+    inst->RampActive = 0;
+    if (disabled) {
+        in->Latched = 0;
+        in->LastTorque = 0.0f;
+        in->AckOld = 0;
+        inst->Stale = 0;
+        inst->StaleCycles = 0;
+    }
+}
+
+static const fracctrl_block watchdog_block = {watchdog_load, watchdog_hold};
 
 void Watchdog(struct Watchdog* inst)
 {
     WatchdogInternalType *in = &inst->Internal;
-    int enable_edge;
+    int phase = FRACCTRL_RUN;
     BOOL ack_edge;
     frac_real ramped;
 
-    if (!inst->Enable) {
-        fracctrl_disable(&in->Fb);
-        in->Latched = 0;
-        in->LastTorque = 0.0f;
-        in->AckOld = 0;
-        inst->Active = 0;
-        inst->Busy = 0;
-        inst->Error = 0;
-        inst->StatusID = fracSTAT_DISABLED;
-        inst->TorqueOut = 0.0f;
-        inst->Stale = 0;
-        inst->StaleCycles = 0;
-        inst->RampActive = 0;
-        return;
-    }
-    if (fracctrl_load_edge(&in->Fb, inst->Enable, inst->Update, &enable_edge)) {
-        UINT st = watchdog_check(&inst->Parameters);
-        fracctrl_par_result(&in->Fb, st, enable_edge);
-        if (st == fracSTAT_OK) {
-            in->Par = inst->Parameters;
+    if (!FRACCTRL_STEADY(&in->Fb, inst->Enable, inst->Update)) {
+        phase = fracctrl_enter(&watchdog_block, inst, &in->Fb, inst->Enable, inst->Update, &inst->Active, &inst->Busy,
+                               &inst->Error, &inst->StatusID);
+        if (phase == FRACCTRL_HOLD) {
+            return;
         }
-        if (enable_edge) {
-            in->Latched = 0;
-            in->LastTorque = 0.0f;
-            in->AckOld = inst->Acknowledge;
-        }
-    }
-    if (!in->Fb.ParOk) {
-        inst->Active = 0;
-        inst->Busy = 0;
-        inst->Error = 1;
-        inst->StatusID = in->Fb.ParStatus;
-        inst->TorqueOut = 0.0f;
-        inst->RampActive = 0;
-        return;
     }
 
-    if (enable_edge || inst->SampleCounter != in->CounterOld) {
+    if (phase == FRACCTRL_STARTED || inst->SampleCounter != in->CounterOld) {
         in->CounterOld = inst->SampleCounter;
         inst->StaleCycles = 0;
     } else if (inst->StaleCycles < 0xFFFFFFFFU) {

@@ -1,6 +1,5 @@
 /* PLCopen state handling shared by the FracCtrl bodies (fracctrl_status.h). */
 #include "fracctrl_status.h"
-#include "frac/frac_types.h"
 
 UINT fracctrl_status_id(int status)
 {
@@ -16,32 +15,48 @@ UINT fracctrl_status_id(int status)
     return fracERR_LIBFRAC;
 }
 
-int fracctrl_load_edge(FracFbStateType *fb, BOOL enable, BOOL update, int *enable_edge)
+UDINT fracctrl_spare_bank(const FracFbStateType *fb, UDINT bank)
 {
-    int load;
-    *enable_edge = (enable && !fb->EnableOld) ? 1 : 0;
-    load = *enable_edge || (enable && update && !fb->UpdateOld);
-    fb->EnableOld = enable ? 1 : 0;
-    fb->UpdateOld = update ? 1 : 0;
-    return load;
+    return fb->ParOk ? 1u - bank : bank;
 }
 
-void fracctrl_par_result(FracFbStateType *fb, UINT status_id, int enable_edge)
+int fracctrl_enter(const fracctrl_block *blk, void *inst, FracFbStateType *fb, BOOL enable, BOOL update,
+                   BOOL *valid, BOOL *busy, BOOL *error, UINT *status_id)
 {
-    fb->ParStatus = status_id;
-    if (status_id == fracSTAT_OK) {
-        fb->ParOk = 1;
-    } else if (enable_edge) {
+    int enable_edge, load;
+    if (!enable) {
+        fb->EnableOld = 0;
+        fb->UpdateOld = 0;
         fb->ParOk = 0;
+        fb->ParStatus = fracSTAT_DISABLED;
+        *valid = 0;
+        *busy = 0;
+        *error = 0;
+        *status_id = fracSTAT_DISABLED;
+        blk->hold(inst, 1);
+        return FRACCTRL_HOLD;
     }
-}
-
-void fracctrl_disable(FracFbStateType *fb)
-{
-    fb->EnableOld = 0;
-    fb->UpdateOld = 0;
-    fb->ParOk = 0;
-    fb->ParStatus = fracSTAT_DISABLED;
+    enable_edge = !fb->EnableOld;
+    load = enable_edge || (update && !fb->UpdateOld);
+    fb->EnableOld = 1;
+    fb->UpdateOld = update ? 1 : 0;
+    if (load) {
+        fb->ParStatus = fracctrl_status_id(blk->load(inst, enable_edge));
+        if (fb->ParStatus == fracSTAT_OK) {
+            fb->ParOk = 1;
+        } else if (enable_edge) {
+            fb->ParOk = 0;
+        }
+    }
+    if (!fb->ParOk) {
+        *valid = 0;
+        *busy = 0;
+        *error = 1;
+        *status_id = fb->ParStatus;
+        blk->hold(inst, 0);
+        return FRACCTRL_HOLD;
+    }
+    return enable_edge ? FRACCTRL_STARTED : FRACCTRL_RUN;
 }
 
 void fracctrl_report(const FracFbStateType *fb, int status, BOOL *valid, BOOL *busy, BOOL *error,
@@ -57,20 +72,4 @@ void fracctrl_report(const FracFbStateType *fb, int status, BOOL *valid, BOOL *b
     *valid = 1;
     *error = fb->ParStatus != fracSTAT_OK;
     *status_id = *error ? fb->ParStatus : fracctrl_status_id(status);
-}
-
-void fracctrl_report_no_par(const FracFbStateType *fb, BOOL *valid, BOOL *busy, BOOL *error, UINT *status_id)
-{
-    *valid = 0;
-    *busy = 0;
-    *error = 1;
-    *status_id = fb->ParStatus;
-}
-
-void fracctrl_report_disabled(BOOL *valid, BOOL *busy, BOOL *error, UINT *status_id)
-{
-    *valid = 0;
-    *busy = 0;
-    *error = 0;
-    *status_id = fracSTAT_DISABLED;
 }
