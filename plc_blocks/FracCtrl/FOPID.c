@@ -34,13 +34,7 @@ static int fopid_init(struct FOPID* inst, frac_fopid *fresh, UDINT bank)
     prm.antiwindup = (int)p->AntiWindup;
     prm.tt = (frac_real)p->Tt;
     prm.ts = (frac_real)p->Ts;
-    prm.op.method = (int)p->Method;
-    prm.op.order = FRAC_R(0.0);
-    prm.op.ts = (frac_real)p->Ts;
-    prm.op.memory = (size_t)p->Memory;
-    prm.op.wb = (frac_real)p->Wb;
-    prm.op.wh = (frac_real)p->Wh;
-    prm.op.n = (unsigned)p->N;
+    FRACCTRL_FO_REALIZATION(prm.op, p, FRAC_R(0.0));
     if (frac_fopid_storage_len(&prm) > (size_t)fracFOPID_STORAGE_LEN) {
         return FRAC_E_STORAGE;
     }

@@ -31,13 +31,7 @@ static int fracdamp_init(struct FracDamp* inst, UDINT bank)
     prm.fbeta = (frac_real)p->Fbeta;
     prm.fb = (frac_real)p->Fb;
     prm.ts = (frac_real)p->Ts;
-    prm.op.method = (int)p->Method;
-    prm.op.order = FRAC_R(0.0);
-    prm.op.ts = (frac_real)p->Ts;
-    prm.op.memory = (size_t)p->Memory;
-    prm.op.wb = (frac_real)p->Wb;
-    prm.op.wh = (frac_real)p->Wh;
-    prm.op.n = (unsigned)p->N;
+    FRACCTRL_FO_REALIZATION(prm.op, p, FRAC_R(0.0));
     if (frac_fodamp_storage_len(&prm) > (size_t)fracFODAMP_STORAGE_LEN) {
         return FRAC_E_STORAGE;
     }

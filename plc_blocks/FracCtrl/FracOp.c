@@ -26,13 +26,7 @@ static int fracop_load(void *vinst, int enable_edge)
     frac_fo_params prm;
     int st;
     (void)enable_edge;
-    prm.method = (int)p->Method;
-    prm.order = (frac_real)p->Order;
-    prm.ts = (frac_real)p->Ts;
-    prm.memory = (size_t)p->Memory;
-    prm.wb = (frac_real)p->Wb;
-    prm.wh = (frac_real)p->Wh;
-    prm.n = (unsigned)p->N;
+    FRACCTRL_FO_REALIZATION(prm, p, (frac_real)p->Order);
     if (frac_fo_storage_len(&prm) > (size_t)fracFO_STORAGE_LEN) {
         return FRAC_E_STORAGE;
     }

@@ -120,6 +120,23 @@ void fracctrl_report(const FracFbStateType *fb, int status, BOOL *valid, BOOL *b
     } while (0)
 
 /*
+ * The realization of the fractional operators (frac_fo_params of
+ * frac/fo_op.h) from the parameter pins Method, Ts, Memory, Wb, Wh, N that
+ * FracOp, FOPID and FracDamp share, with order `order` (FOPID and FracDamp
+ * pass 0: libfrac sets each of their operators' own order).
+ */
+#define FRACCTRL_FO_REALIZATION(op, p, order_) \
+    do {                                     \
+        (op).method = (int)(p)->Method;      \
+        (op).order = (order_);               \
+        (op).ts = (frac_real)(p)->Ts;        \
+        (op).memory = (size_t)(p)->Memory;   \
+        (op).wb = (frac_real)(p)->Wb;        \
+        (op).wh = (frac_real)(p)->Wh;        \
+        (op).n = (unsigned)(p)->N;           \
+    } while (0)
+
+/*
  * The two steps on a block with the standard pins and state (Enable,
  * Update, Valid, Busy, Error, StatusID, Fb): FRACCTRL_ENTER is nonzero
  * when the step is to run (FRACCTRL_STEADY, else fracctrl_enter);
