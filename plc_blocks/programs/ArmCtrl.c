@@ -1,5 +1,6 @@
 /* ArmCtrl: the Cyclic #1 arm controller program (ArmCtrl.h). */
 #include "ArmCtrl.h"
+#include "plcprog.h"
 #include "frac/frac_types.h"
 
 #include <string.h>
@@ -216,21 +217,14 @@ int armctrl_params_from_table(armctrl_table_storage *s, const frac_ptable *t)
  * is copied into the storage. Returns the StatusID of the first failure. */
 static UINT load_table(armctrl *a)
 {
-    int st;
-    memset(&a->partable, 0, sizeof a->partable);
-    a->partable.pData = (USINT *)a->table;
-    a->partable.Size = a->table_size;
-    a->partable.Enable = 1;
-    ParTable(&a->partable);
-    if (a->partable.Error) {
-        return a->partable.StatusID;
+    UINT st = plcprog_open_table(&a->partable, a->table, a->table_size);
+    if (st == fracSTAT_OK) {
+        st = plcprog_status_id(armctrl_params_from_table(a->storage, &a->partable.Handle));
     }
-    st = armctrl_params_from_table(a->storage, &a->partable.Handle);
-    if (st != FRAC_OK) {
-        return (UINT)(fracERR_LIBFRAC + (UINT)(-st));
+    if (st == fracSTAT_OK) {
+        a->par = &a->storage->par;
     }
-    a->par = &a->storage->par;
-    return fracSTAT_OK;
+    return st;
 }
 
 void armctrl_init(void *ctx)
@@ -348,30 +342,14 @@ void armctrl_program(armctrl *a, plc_program *prog, const armctrl_params *par, a
 {
     memset(a, 0, sizeof *a);
     a->par = par;
-    a->io_in[0].image = image_in;
-    a->io_in[0].local = &a->in;
-    a->io_in[0].size = sizeof a->in;
+    plcprog_io(&a->io_in[0], image_in, &a->in, sizeof a->in);
     if (imu_image) {
-        a->io_in[1].image = &imu_image->TipRate;
-        a->io_in[1].local = &a->in.TipRate;
-        a->io_in[1].size = sizeof a->in.TipRate;
-        a->io_in[2].image = &imu_image->ImuCounter;
-        a->io_in[2].local = &a->in.ImuCounter;
-        a->io_in[2].size = sizeof a->in.ImuCounter;
+        plcprog_io(&a->io_in[1], &imu_image->TipRate, &a->in.TipRate, sizeof a->in.TipRate);
+        plcprog_io(&a->io_in[2], &imu_image->ImuCounter, &a->in.ImuCounter, sizeof a->in.ImuCounter);
     }
-    a->io_out.image = image_out;
-    a->io_out.local = &a->out;
-    a->io_out.size = sizeof a->out;
-    memset(prog, 0, sizeof *prog);
-    prog->name = "ArmCtrl";
-    prog->init = armctrl_init;
-    prog->cyclic = armctrl_cyclic;
-    prog->exit = armctrl_exit;
-    prog->ctx = a;
-    prog->inputs = a->io_in;
-    prog->n_inputs = imu_image ? 3 : 1;
-    prog->outputs = &a->io_out;
-    prog->n_outputs = 1;
+    plcprog_io(&a->io_out, image_out, &a->out, sizeof a->out);
+    plcprog_describe(prog, "ArmCtrl", armctrl_init, armctrl_cyclic, armctrl_exit, a, a->io_in, imu_image ? 3 : 1,
+                     &a->io_out);
 }
 
 void armctrl_program_table(armctrl *a, plc_program *prog, const void *table, UDINT size,

@@ -1,5 +1,6 @@
 /* DampLoop: the seed 002 collocated damping example program (DampLoop.h). */
 #include "DampLoop.h"
+#include "plcprog.h"
 #include "frac/frac_types.h"
 
 #include <string.h>
@@ -46,19 +47,14 @@ void damploop_init(void *ctx)
     memset(&d->law, 0, sizeof d->law);
     memset(&d->out, 0, sizeof d->out);
     if (d->table) {
-        int st = FRAC_OK;
-        memset(&d->partable, 0, sizeof d->partable);
-        d->partable.pData = (USINT *)d->table;
-        d->partable.Size = d->table_size;
-        d->partable.Enable = 1;
-        ParTable(&d->partable);
-        if (!d->partable.Error) {
-            st = damploop_params_from_table(&d->loaded, &d->partable.Handle);
+        UINT st = plcprog_open_table(&d->partable, d->table, d->table_size);
+        if (st == fracSTAT_OK) {
+            st = plcprog_status_id(damploop_params_from_table(&d->loaded, &d->partable.Handle));
         }
-        if (d->partable.Error || st != FRAC_OK) {
+        if (st != fracSTAT_OK) {
             d->fault = 1;
             d->out.Error = 1;
-            d->out.StatusID = d->partable.Error ? d->partable.StatusID : (UINT)(fracERR_LIBFRAC + (UINT)(-st));
+            d->out.StatusID = st;
             return;
         }
         d->par = &d->loaded;
@@ -104,22 +100,9 @@ void damploop_program(damploop *d, plc_program *prog, const FracDampParType *par
 {
     memset(d, 0, sizeof *d);
     d->par = par;
-    d->io_in.image = image_in;
-    d->io_in.local = &d->in;
-    d->io_in.size = sizeof d->in;
-    d->io_out.image = image_out;
-    d->io_out.local = &d->out;
-    d->io_out.size = sizeof d->out;
-    memset(prog, 0, sizeof *prog);
-    prog->name = "DampLoop";
-    prog->init = damploop_init;
-    prog->cyclic = damploop_cyclic;
-    prog->exit = damploop_exit;
-    prog->ctx = d;
-    prog->inputs = &d->io_in;
-    prog->n_inputs = 1;
-    prog->outputs = &d->io_out;
-    prog->n_outputs = 1;
+    plcprog_io(&d->io_in, image_in, &d->in, sizeof d->in);
+    plcprog_io(&d->io_out, image_out, &d->out, sizeof d->out);
+    plcprog_describe(prog, "DampLoop", damploop_init, damploop_cyclic, damploop_exit, d, &d->io_in, 1, &d->io_out);
 }
 
 void damploop_program_table(damploop *d, plc_program *prog, const FracDampParType *base, const void *table,

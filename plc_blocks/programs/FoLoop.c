@@ -1,5 +1,6 @@
 /* FoLoop: the seed 001 FO-PI / FO-PD example program (FoLoop.h). */
 #include "FoLoop.h"
+#include "plcprog.h"
 
 #include <string.h>
 
@@ -53,17 +54,14 @@ void foloop_init(void *ctx)
     memset(&f->pid, 0, sizeof f->pid);
     memset(&f->out, 0, sizeof f->out);
     if (f->table) {
-        int st;
-        memset(&f->partable, 0, sizeof f->partable);
-        f->partable.pData = (USINT *)f->table;
-        f->partable.Size = f->table_size;
-        f->partable.Enable = 1;
-        ParTable(&f->partable);
-        st = f->partable.Error ? -1 : foloop_params_from_table(&f->loaded, &f->partable.Handle);
-        if (st != FRAC_OK) {
+        UINT st = plcprog_open_table(&f->partable, f->table, f->table_size);
+        if (st == fracSTAT_OK) {
+            st = plcprog_status_id(foloop_params_from_table(&f->loaded, &f->partable.Handle));
+        }
+        if (st != fracSTAT_OK) {
             f->fault = 1;
             f->out.Error = 1;
-            f->out.StatusID = f->partable.Error ? f->partable.StatusID : (UINT)(fracERR_LIBFRAC + (UINT)(-st));
+            f->out.StatusID = st;
             return;
         }
         f->par = &f->loaded;
@@ -109,22 +107,9 @@ void foloop_program(foloop *f, plc_program *prog, const foloop_params *par, folo
 {
     memset(f, 0, sizeof *f);
     f->par = par;
-    f->io_in.image = image_in;
-    f->io_in.local = &f->in;
-    f->io_in.size = sizeof f->in;
-    f->io_out.image = image_out;
-    f->io_out.local = &f->out;
-    f->io_out.size = sizeof f->out;
-    memset(prog, 0, sizeof *prog);
-    prog->name = "FoLoop";
-    prog->init = foloop_init;
-    prog->cyclic = foloop_cyclic;
-    prog->exit = foloop_exit;
-    prog->ctx = f;
-    prog->inputs = &f->io_in;
-    prog->n_inputs = 1;
-    prog->outputs = &f->io_out;
-    prog->n_outputs = 1;
+    plcprog_io(&f->io_in, image_in, &f->in, sizeof f->in);
+    plcprog_io(&f->io_out, image_out, &f->out, sizeof f->out);
+    plcprog_describe(prog, "FoLoop", foloop_init, foloop_cyclic, foloop_exit, f, &f->io_in, 1, &f->io_out);
 }
 
 void foloop_program_table(foloop *f, plc_program *prog, const foloop_params *base, const void *table, UDINT size,

@@ -1,5 +1,6 @@
 /* ImuRead: the Cyclic #2 IMU acquisition program (ImuRead.h). */
 #include "ImuRead.h"
+#include "plcprog.h"
 #include "frac/frac_types.h"
 
 #include <string.h>
@@ -31,19 +32,7 @@ void imuread_program(imuread *m, plc_program *prog, REAL scale, imuread_inputs *
 {
     memset(m, 0, sizeof *m);
     m->scale = scale;
-    m->io_in.image = image_in;
-    m->io_in.local = &m->in;
-    m->io_in.size = sizeof m->in;
-    m->io_out.image = image_out;
-    m->io_out.local = &m->out;
-    m->io_out.size = sizeof m->out;
-    memset(prog, 0, sizeof *prog);
-    prog->name = "ImuRead";
-    prog->init = imuread_init;
-    prog->cyclic = imuread_cyclic;
-    prog->ctx = m;
-    prog->inputs = &m->io_in;
-    prog->n_inputs = 1;
-    prog->outputs = &m->io_out;
-    prog->n_outputs = 1;
+    plcprog_io(&m->io_in, image_in, &m->in, sizeof m->in);
+    plcprog_io(&m->io_out, image_out, &m->out, sizeof m->out);
+    plcprog_describe(prog, "ImuRead", imuread_init, imuread_cyclic, NULL, m, &m->io_in, 1, &m->io_out);
 }
