@@ -85,20 +85,28 @@ Cx<double> cx_sqrt(const Cx<double>& z)
     return {std::fabs(z.im) / (2.0 * t), std::copysign(t, z.im)};
 }
 
-}  // namespace
+// The frequency-independent factors of (j w)^alpha and (j w)^lambda.
+struct KernelConsts {
+    double ca, sa, cl, sl;  // cos/sin(pi alpha/2), cos/sin(pi lambda/2)
+    explicit KernelConsts(const AntennaDamping<double>& d)
+        : ca(std::cos(0.5 * M_PI * d.alpha)), sa(std::sin(0.5 * M_PI * d.alpha)),
+          cl(std::cos(0.5 * M_PI * d.lambda)), sl(std::sin(0.5 * M_PI * d.lambda))
+    {
+    }
+};
 
-std::complex<double> antenna_frf_with_gradient(const AntennaLink& link, const AntennaDamping<double>& d, double w,
-                                               std::array<std::complex<double>, 4>* grad)
+// antenna_frf_with_gradient with lw = ln w and the constants precomputed.
+std::complex<double> frf_kernel(const AntennaLink& link, const AntennaDamping<double>& d, const KernelConsts& kc,
+                                double w, double lw, std::array<std::complex<double>, 4>* grad)
 {
     // Cx (models/antenna.hpp) multiplies and divides with the textbook
     // formulas; std::complex<double> would call the C99 Annex G routines
     // (__muldc3/__divdc3) on every operation, several times slower here.
     using C = Cx<double>;
     const double EI = link.EI();
-    const double lw = std::log(w);
     const double ma = std::exp(d.alpha * lw), ml = std::exp(d.lambda * lw);
-    const C sa(ma * std::cos(0.5 * M_PI * d.alpha), ma * std::sin(0.5 * M_PI * d.alpha));
-    const C sl(ml * std::cos(0.5 * M_PI * d.lambda), ml * std::sin(0.5 * M_PI * d.lambda));
+    const C sa(ma * kc.ca, ma * kc.sa);
+    const C sl(ml * kc.cl, ml * kc.sl);
     const C one(1.0, 0.0);
     const C I = one + d.zeta * sa;
     const C X = C(-(link.rho / EI) * w * w, 0.0) + d.gamma * sl;
@@ -131,6 +139,14 @@ std::complex<double> antenna_frf_with_gradient(const AntennaLink& link, const An
     }
     const C G = -EI * (I * H);
     return {G.re, G.im};
+}
+
+}  // namespace
+
+std::complex<double> antenna_frf_with_gradient(const AntennaLink& link, const AntennaDamping<double>& d, double w,
+                                               std::array<std::complex<double>, 4>* grad)
+{
+    return frf_kernel(link, d, KernelConsts(d), w, std::log(w), grad);
 }
 
 namespace {
@@ -171,6 +187,7 @@ public:
         : data_(data), structure_(s), link_(link), n_(antenna_free_count(s))
     {
         for (double v : W) sqw_.push_back(std::sqrt(v));
+        for (double w : data.w) lw_.push_back(std::log(w));
         const char* const* names = antenna_free_names(s);
         // index of each free parameter in (zeta, alpha, gamma, lambda)
         for (int i = 0; i < n_; ++i) {
@@ -188,10 +205,11 @@ public:
         for (int i = 0; i < n_; ++i) p[i] = log_[i] ? std::exp(x[0][i]) : x[0][i];
         const AntennaDamping<double> d = antenna_damping<double>(structure_, p);
         const bool want_jac = jac && jac[0];
+        const KernelConsts kc(d);
         std::array<std::complex<double>, 4> g;
         for (std::size_t k = 0; k < data_.w.size(); ++k) {
             const std::complex<double> e =
-                data_.G[k] - antenna_frf_with_gradient(link_, d, data_.w[k], want_jac ? &g : nullptr);
+                data_.G[k] - frf_kernel(link_, d, kc, data_.w[k], lw_[k], want_jac ? &g : nullptr);
             r[2 * k] = sqw_[k] * e.real();
             r[2 * k + 1] = sqw_[k] * e.imag();
             if (want_jac) {
@@ -208,7 +226,7 @@ public:
 
 private:
     const Frf& data_;
-    std::vector<double> sqw_;
+    std::vector<double> sqw_, lw_;
     AntennaStructure structure_;
     AntennaLink link_;
     int n_;
