@@ -164,6 +164,38 @@ ParamTable table_from_document(const nlohmann::json& j)
         t.add("Kd", num("controller", "Kd"), "derivative gain of s^mu");
         t.add("mu", num("controller", "mu"), "derivative order");
         t.add("delta", num("controller", "delta"), "positive output feedback 1/K");
+    } else if (schema == "frac.design.collocated") {
+        // C(s) = Kc (1 + 2 eps s) s^(alpha - 2) (seed 002 eq. (48))
+        t.name = "collocated";
+        t.add("Kc", num("controller", "Kc"), "gain (24)");
+        t.add("alpha", num("controller", "alpha"), "fractional order");
+        t.add("eps", num("controller", "eps"), "inner-loop time constant [s]");
+    } else if (schema == "frac.design.lqg") {
+        // u = u* + K e_x_hat - e_z_hat, observer (7.27) (seed 004)
+        auto matrix = [&](const char* key) {
+            if (!j.contains(key) || !j[key].is_array() || j[key].empty() || !j[key][0].is_array())
+                throw TableError(key, "missing or not a matrix in the " + schema + " document");
+            Eigen::MatrixXd M(j[key].size(), j[key][0].size());
+            for (size_t r = 0; r < j[key].size(); ++r) {
+                if (j[key][r].size() != static_cast<size_t>(M.cols()))
+                    throw TableError(std::string(key) + "[" + std::to_string(r) + "]", "ragged matrix row");
+                for (size_t c = 0; c < j[key][r].size(); ++c) M(r, c) = j[key][r][c].get<double>();
+            }
+            return M;
+        };
+        auto scalar = [&](const char* key) {
+            if (!j.contains(key) || !j[key].is_number()) throw TableError(key, "missing or not a number");
+            return j[key].get<double>();
+        };
+        t.name = "lqg";
+        t.add("K", matrix("K"), "state feedback gain (7.24)");
+        t.add("Le", matrix("Le"), "predictor Kalman gain (7.27)");
+        t.add("Ae", matrix("Ae"), "observer model A_e (7.26)");
+        t.add("Be", matrix("Be"), "observer model B_e");
+        t.add("Ce", matrix("Ce"), "observer model C_e");
+        t.add("Ts", scalar("T"), "sample time [s]");
+        t.add("di", scalar("di"), "input delay [samples]");
+        t.add("d_o", scalar("do"), "IMU output delay [samples]");
     } else {
         throw TableError("schema", "no table mapping for documents of schema '" + schema + "'");
     }

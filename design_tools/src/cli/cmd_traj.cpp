@@ -1,0 +1,95 @@
+// cmd_traj.cpp - `fracdesign traj`: seed 004 sin^2 point-to-point trajectory with the
+// rigid-body feedforward and the delay time shift of the torque (Sec. 4.1, 4.2, 8.6).
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "fracdesign/cli.hpp"
+#include "fracdesign/design/trajectory.hpp"
+#include "fracdesign/models/arm.hpp"
+
+namespace fracdesign {
+namespace {
+
+int run_traj(const std::vector<std::string>& argv)
+{
+    Args args(argv, {"json"});
+    args.check_known({"json", "qs", "qe", "qd-max", "qdd-max", "ts", "te", "dt", "t-end", "Il", "di", "out"});
+    constexpr double kPi = 3.14159265358979323846;
+    // Defaults: Table 8.5 (q_s = 0, q_e = pi/2, qd_m = pi/2, qdd_m = 2 pi, t_s = 0.5 s, t_e = 2 s).
+    design::PtpSpec s{args.num("qs", 0.0), args.num("qe", kPi / 2), args.num("qd-max", kPi / 2),
+                      args.num("qdd-max", 2 * kPi), args.num("ts", 0.5), args.num("te", 2.0)};
+    const double dt = args.num("dt", 1.2e-3);
+    const long di = args.integer("di", 0);
+    if (!(dt > 0.0) || di < 0) throw UsageError("need --dt > 0 and --di >= 0");
+    std::unique_ptr<design::SinSquaredPtp> p;
+    try {
+        p = std::make_unique<design::SinSquaredPtp>(s);
+    } catch (const std::invalid_argument& e) {
+        std::cerr << "fracdesign traj: infeasible trajectory: " << e.what() << "\n";
+        return 1;
+    }
+    const double t_end = args.num("t-end", p->t_end() + 0.5);
+    // Rigid-body feedforward (4.14)-(4.17): drive of Table 8.2 (I_M = n^2 I_m, notes 004a) and a
+    // rigid link I_l = I_h + I_b; the thesis gives no I_b, default rho((L + r_h)^3 - r_h^3)/3 + I_h
+    // of the Table 8.3 beam (notes 004b section 3).
+    const DriveParams dr = wang_drive();
+    const TimoshenkoParams b = wang_steel_beam();
+    const double Il = args.num("Il", b.rho * (std::pow(b.L + dr.r_h, 3) - std::pow(dr.r_h, 3)) / 3.0 + dr.I_h);
+    if (!(Il > 0.0)) throw UsageError("--Il must be > 0");
+    const long n = static_cast<long>(std::floor(t_end / dt)) + 1;
+    std::vector<std::array<double, 5>> q(n);
+    std::vector<std::array<double, 4>> ff(n);
+    for (long k = 0; k < n; ++k) {
+        q[k] = p->eval(k * dt);
+        ff[k] = design::rigid_body_feedforward(q[k], dr.I_M, Il, dr.c_s);
+    }
+    if (args.has("out")) {
+        std::ofstream f(args.str("out"));
+        if (!f) throw std::runtime_error("cannot write '" + args.str("out") + "'");
+        f.precision(12);
+        // tau_M_bar*[k] = tau_M*[k + d_i]: the torque is sent d_i samples early (Sec. 8.6).
+        f << "t,q,qd,qdd,q3,q4,theta_M,theta_M_dot,theta_M_ddot,tau_M,tau_M_sent\n";
+        for (long k = 0; k < n; ++k) {
+            const long ks = std::min(k + di, n - 1);
+            f << k * dt;
+            for (double v : q[k]) f << "," << v;
+            for (double v : ff[k]) f << "," << v;
+            f << "," << ff[ks][3] << "\n";
+        }
+    }
+    double tau_max = 0.0;
+    for (const auto& v : ff) tau_max = std::max(tau_max, std::fabs(v[3]));
+    nlohmann::json j = {{"schema", "frac.design.traj"}, {"version", 1},
+                        {"source", "seed 004 (4.1)-(4.7) corrected, (4.14)-(4.17), Sec. 8.6"},
+                        {"t_a", p->t_a()}, {"t_e", p->t_end()}, {"qd_cruise", p->qd_cruise()},
+                        {"samples", n}, {"dt", dt}, {"di", di}, {"I_l", Il}, {"tau_M_max", tau_max}};
+    if (args.has("out")) j["out"] = args.str("out");
+    if (args.has("json")) {
+        std::cout << j.dump(2) << "\n";
+    } else {
+        std::printf("sin^2 PTP (seed 004): q %g -> %g rad, t_a = %g s, ends at %g s, cruise %g rad/s\n", s.q_s, s.q_e,
+                    p->t_a(), p->t_end(), p->qd_cruise());
+        std::printf("  rigid-body feedforward (I_M = %g, I_l = %g kg m^2, c_s = %g N m/rad): max |tau_M*| = %.4g N m\n",
+                    dr.I_M, Il, dr.c_s, tau_max);
+        std::printf("  %ld samples at dt = %g s%s%s\n", n, dt, di ? ", torque column shifted by d_i samples" : "",
+                    args.has("out") ? (", written to " + args.str("out")).c_str() : "");
+    }
+    return 0;
+}
+
+CommandRegistrar reg({"traj", "sin^2 point-to-point trajectory and rigid-body feedforward (seed 004)",
+                      "usage: fracdesign traj [--qs Q] [--qe Q] [--qd-max V] [--qdd-max A] [--ts T] [--te T]\n"
+                      "                       [--dt DT] [--t-end T] [--Il I] [--di N] [--out FILE.csv] [--json]\n\n"
+                      "Plans the sin^2 PTP of seed 004 (4.1)-(4.7) (corrected: qdd_m in (4.5), braking\n"
+                      "sin^2(pi (t - t_b)/t_a) in (4.7)); defaults are Table 8.5. --te 0 moves as fast as\n"
+                      "qd_max and qdd_max allow; an end time shorter than that is refused (exit 1). Samples\n"
+                      "q..q^(4) and the rigid-body feedforward theta_M*, theta_M*', theta_M*'', tau_M*\n"
+                      "(4.14)-(4.17) every DT up to --t-end; --di N adds tau_M_sent[k] = tau_M*[k + N]\n"
+                      "(torque sent N samples early for the input delay, Sec. 8.6).\n",
+                      run_traj});
+
+}  // namespace
+}  // namespace fracdesign
