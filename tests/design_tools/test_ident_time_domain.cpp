@@ -98,7 +98,13 @@ TEST(ProcessFit, non_converged_fit_says_so_with_the_ceres_report)
     ProcessFitOptions o;
     o.initial = {0.5, 0.2, 1.2, 0.0};
     o.max_iterations = 1;
+    int calls = 0;
+    o.on_iteration = [&calls](int, double J) {
+        EXPECT_GT(J, 0.0);
+        ++calls;
+    };
     const ProcessFitResult r = fit_fo_process(u, y, h, o);
+    EXPECT_GE(calls, 1);  // the progress hook sees the iterations
     EXPECT_FALSE(r.converged);
     EXPECT_NE(r.summary.find("NO_CONVERGENCE"), std::string::npos) << r.summary;
     EXPECT_NE(r.full_report.find("Termination"), std::string::npos);

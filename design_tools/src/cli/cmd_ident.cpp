@@ -152,9 +152,13 @@ int run_process(const Args& a)
         for (int i = 0; i < 4; ++i) o.initial[std::size_t(i)] = v[std::size_t(i)];
     }
     o.max_iterations = int(a.integer("max-iter", 100));
-    ident::Progress prog(show_progress(a), "ident process", 1);
+    ident::Progress prog(show_progress(a), "ident process: iteration", o.max_iterations);
+    o.on_iteration = [&prog](int it, double J) {
+        char m[64];
+        std::snprintf(m, sizeof m, "sum of squares %.6g", J);
+        prog.update(it, m);
+    };
     const auto r = ident::fit_fo_process(u, y, t.dt, o);
-    prog.update(1, r.summary.substr(0, 60));
     if (!r.converged) report_not_converged("process fit", r.full_report);
     if (a.has("json")) {
         json j = {{"schema", "frac.ident.process"}, {"version", 1},
@@ -259,6 +263,11 @@ int run_servo(const Args& a)
         o.skip = std::size_t(a.integer("skip", 50));
         o.max_iterations = int(a.integer("max-iter", 100));
         o.substeps = int(a.integer("substeps", 4));
+        o.on_iteration = [&prog, step](int it, double J) {  // shown as the step in progress
+            char m[64];
+            std::snprintf(m, sizeof m, "output error: iteration %d, sum of squares %.6g", it, J);
+            prog.update(step + 1, m);
+        };
         const ident::ServoFitResult r = ident::fit_servo(rec, o);
         prog.update(++step, "output-error fit done");
         if (!r.converged) {

@@ -25,6 +25,20 @@ double rms(const std::vector<double>& v, std::size_t skip)
     return std::sqrt(s / double(v.size() - skip));
 }
 
+// Forwards Ceres' per-iteration state to an optional progress callback.
+class IterationReporter : public ceres::IterationCallback {
+public:
+    explicit IterationReporter(const std::function<void(int, double)>& f) : f_(f) {}
+    ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override
+    {
+        f_(s.iteration, 2.0 * s.cost);
+        return ceres::SOLVER_CONTINUE;
+    }
+
+private:
+    const std::function<void(int, double)>& f_;
+};
+
 ceres::Solver::Options solver_options(int max_iterations)
 {
     ceres::Solver::Options so;
@@ -122,7 +136,10 @@ ProcessFitResult fit_fo_process(const std::vector<double>& u, const std::vector<
         problem.SetParameterUpperBound(x.data(), i, opt.upper[std::size_t(i)]);
     }
     ceres::Solver::Summary sum;
-    ceres::Solve(solver_options(opt.max_iterations), &problem, &sum);
+    ceres::Solver::Options so = solver_options(opt.max_iterations);
+    IterationReporter rep(opt.on_iteration);
+    if (opt.on_iteration) so.callbacks.push_back(&rep);
+    ceres::Solve(so, &problem, &sum);
     ProcessFitResult res;
     res.process.K = x[0];
     res.process.T = x[1];
@@ -187,7 +204,10 @@ ServoFitResult fit_servo(const ServoRecord& rec, const ServoFitOptions& opt)
     }
     if (!opt.stribeck) problem.SetManifold(x.data(), new ceres::SubsetManifold(kServoParams, {4, 5}));
     ceres::Solver::Summary sum;
-    ceres::Solve(solver_options(opt.max_iterations), &problem, &sum);
+    ceres::Solver::Options so = solver_options(opt.max_iterations);
+    IterationReporter rep(opt.on_iteration);
+    if (opt.on_iteration) so.callbacks.push_back(&rep);
+    ceres::Solve(so, &problem, &sum);
     ServoFitResult res;
     res.theta = x;
     res.converged = sum.termination_type == ceres::CONVERGENCE;

@@ -9,6 +9,7 @@
 // (`converged` false) and carries the Ceres reports.
 #pragma once
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,7 @@ struct ProcessFitOptions {
     std::array<double, 4> lower = {-1e6, 1e-9, 0.05, 0.0};
     std::array<double, 4> upper = {1e6, 1e9, 2.0, 1e3};
     int max_iterations = 100;
+    std::function<void(int, double)> on_iteration;  // optional: (iteration, sum of squared residuals)
 };
 
 struct ProcessFitResult {
@@ -108,6 +110,7 @@ struct ServoFitOptions {
     int substeps = 4;       // RK4 sub-steps per sample
     int max_iterations = 100;
     std::size_t skip = 50;  // samples not in the cost (start-up transient, EMPS n_border)
+    std::function<void(int, double)> on_iteration;  // optional: (iteration, sum of squared residuals)
 };
 
 struct ServoFitResult {
