@@ -175,7 +175,7 @@ json summarize(const ModelSpec& m, const Args& a, bool print)
 int run_model(const std::vector<std::string>& argv)
 {
     Args a(argv, {"json", "full", "undamped"});
-    a.check_known({"json", "model", "save", "modes", "w", "N", "collocation", "L", "r_t", "r_r", "I_M", "full", "shifts",
+    a.check_known({"json", "model", "save", "save-ss", "modes", "w", "N", "collocation", "L", "r_t", "r_r", "I_M", "full", "shifts",
                    "structure", "zeta", "alpha", "gamma", "lambda", "m2", "undamped", "K", "T", "tau"});
     ModelSpec m;
     if (a.has("model")) {
@@ -194,6 +194,13 @@ int run_model(const std::vector<std::string>& argv)
     const bool js = a.has("json");
     const json result = summarize(m, a, !js);
     if (a.has("save")) write_model_file(a.str("save"), m);
+    if (a.has("save-ss")) {
+        try {
+            write_model_file(a.str("save-ss"), model_state_space(m));
+        } catch (const std::invalid_argument& e) {
+            throw UsageError(std::string("--save-ss: ") + e.what());
+        }
+    }
     if (js) std::cout << json{{"schema", "frac.model.summary"}, {"version", 1}, {"model", model_to_json(m)}, {"result", result}}.dump(2) << "\n";
     return 0;
 }
@@ -210,6 +217,7 @@ CommandRegistrar reg({"model", "build a seed model and print its frequencies, po
                       "  foprocess   seed 001 K e^{-tau s}/(T s^lambda+1): --K --T --lambda --tau --w ...\n\n"
                       "  --model FILE  read a JSON model (docs/model_format.md) instead of parameters\n"
                       "  --save FILE   write the model as JSON\n"
+                      "  --save-ss FILE  write its LTI state space (kind statespace; rational models only)\n"
                       "  --json        machine-readable result {schema, version, model, result}\n",
                       run_model});
 
