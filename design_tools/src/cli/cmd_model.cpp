@@ -191,9 +191,6 @@ int run_model(const std::vector<std::string>& argv)
             throw UsageError(e.what());
         }
     }
-    const bool js = a.has("json");
-    const json result = summarize(m, a, !js);
-    if (a.has("save")) write_model_file(a.str("save"), m);
     if (a.has("save-ss")) {
         try {
             write_model_file(a.str("save-ss"), model_state_space(m));
@@ -201,6 +198,9 @@ int run_model(const std::vector<std::string>& argv)
             throw UsageError(std::string("--save-ss: ") + e.what());
         }
     }
+    const bool js = a.has("json");
+    const json result = summarize(m, a, !js);
+    if (a.has("save")) write_model_file(a.str("save"), m);
     if (js) std::cout << json{{"schema", "frac.model.summary"}, {"version", 1}, {"model", model_to_json(m)}, {"result", result}}.dump(2) << "\n";
     return 0;
 }
