@@ -1,22 +1,72 @@
 // cmd_traj.cpp - `fracdesign traj`: seed 004 sin^2 point-to-point trajectory with the
 // rigid-body feedforward and the delay time shift of the torque (Sec. 4.1, 4.2, 8.6).
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "fracdesign/cli.hpp"
+#include "fracdesign/design/ibffc.hpp"
+#include "fracdesign/design/lqg.hpp"
 #include "fracdesign/design/trajectory.hpp"
 #include "fracdesign/models/arm.hpp"
 
 namespace fracdesign {
 namespace {
 
+// Inversion-based feedforward: stable inversion of the arm (ibffc.hpp) for q'(t) as the tip velocity.
+int run_ibffc(const Args& args, const design::SinSquaredPtp& p, double dt, long di)
+{
+    TimoshenkoParams beam = wang_steel_beam();
+    // The thesis gives no beam damping (notes 004b 1.2); default r_t = 0.5 N s/m^2, r_r = 0.
+    beam.r_t = args.num("rt", 0.5);
+    beam.r_r = args.num("rr", 0.0);
+    try {
+        beam.validate();
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+    }
+    const double pre = args.num("pre", 2.0), t_end = args.num("t-end", p.t_end() + 2.5);
+    if (!(pre >= 0.0)) throw UsageError("--pre must be >= 0");
+    const StateSpace plant = design::arm_measured_model(build_arm(beam, wang_drive(), ArmOptions()).arm);
+    const auto r = design::stable_inversion(plant, dt, [&](double t) { return p.eval(t)[1]; }, -pre, t_end);
+    if (args.has("out")) {
+        std::ofstream f(args.str("out"));
+        if (!f) throw std::runtime_error("cannot write '" + args.str("out") + "'");
+        f.precision(12);
+        f << "t,psi_dot_L_des,tau_M,theta_M,theta_M_dot,tau_M_sent,psi_dot_L_model\n";
+        const long n = static_cast<long>(r.t.size());
+        for (long k = 0; k < n; ++k)
+            f << r.t[k] << "," << r.y_des[k] << "," << r.u[k] << "," << r.theta_M[k] << "," << r.theta_M_dot[k] << ","
+              << r.u[std::min(k + di, n - 1)] << "," << r.y_sim[k] << "\n";
+    }
+    double tau_max = 0.0;
+    for (double u : r.u) tau_max = std::max(tau_max, std::fabs(u));
+    nlohmann::json j = {{"schema", "frac.design.ibffc"}, {"version", 1},
+                        {"source", "seed 004 Sec. 4.3, App. E/F (stable inversion of the sampled arm)"},
+                        {"t_a", p.t_a()}, {"t_e", p.t_end()}, {"dt", dt}, {"di", di}, {"r_t", beam.r_t},
+                        {"r_r", beam.r_r}, {"samples", r.t.size()}, {"modes_forward", r.n_forward},
+                        {"modes_backward", r.n_backward}, {"tau_M_max", tau_max}, {"tracking_rel_rms", r.rel_rms}};
+    if (args.has("json")) {
+        std::cout << j.dump(2) << "\n";
+    } else {
+        std::printf("ibFFC (seed 004 stable inversion): horizon [%g, %g] s, dt = %g s, %d modes forward, %d backward\n",
+                    -pre, t_end, dt, r.n_forward, r.n_backward);
+        std::printf("  max |tau_M*| = %.4g N m; model driven by tau_M* tracks psi'(L)* to %.2e relative RMS\n", tau_max,
+                    r.rel_rms);
+        if (args.has("out")) std::printf("  written to %s\n", args.str("out").c_str());
+    }
+    return 0;
+}
+
 int run_traj(const std::vector<std::string>& argv)
 {
-    Args args(argv, {"json"});
-    args.check_known({"json", "qs", "qe", "qd-max", "qdd-max", "ts", "te", "dt", "t-end", "Il", "di", "out"});
+    Args args(argv, {"json", "ibffc"});
+    args.check_known({"json", "qs", "qe", "qd-max", "qdd-max", "ts", "te", "dt", "t-end", "Il", "di", "out", "ibffc",
+                      "rt", "rr", "pre"});
     constexpr double kPi = 3.14159265358979323846;
     // Defaults: Table 8.5 (q_s = 0, q_e = pi/2, qd_m = pi/2, qdd_m = 2 pi, t_s = 0.5 s, t_e = 2 s).
     design::PtpSpec s{args.num("qs", 0.0), args.num("qe", kPi / 2), args.num("qd-max", kPi / 2),
@@ -46,6 +96,7 @@ int run_traj(const std::vector<std::string>& argv)
         q[k] = p->eval(k * dt);
         ff[k] = design::rigid_body_feedforward(q[k], dr.I_M, Il, dr.c_s);
     }
+    if (args.has("ibffc")) return run_ibffc(args, *p, dt, di);
     if (args.has("out")) {
         std::ofstream f(args.str("out"));
         if (!f) throw std::runtime_error("cannot write '" + args.str("out") + "'");
@@ -82,13 +133,19 @@ int run_traj(const std::vector<std::string>& argv)
 
 CommandRegistrar reg({"traj", "sin^2 point-to-point trajectory and rigid-body feedforward (seed 004)",
                       "usage: fracdesign traj [--qs Q] [--qe Q] [--qd-max V] [--qdd-max A] [--ts T] [--te T]\n"
-                      "                       [--dt DT] [--t-end T] [--Il I] [--di N] [--out FILE.csv] [--json]\n\n"
+                      "                       [--dt DT] [--t-end T] [--Il I] [--di N] [--out FILE.csv] [--json]\n"
+                      "                       [--ibffc [--rt R] [--rr R] [--pre S]]\n\n"
                       "Plans the sin^2 PTP of seed 004 (4.1)-(4.7) (corrected: qdd_m in (4.5), braking\n"
                       "sin^2(pi (t - t_b)/t_a) in (4.7)); defaults are Table 8.5. --te 0 moves as fast as\n"
                       "qd_max and qdd_max allow; an end time shorter than that is refused (exit 1). Samples\n"
                       "q..q^(4) and the rigid-body feedforward theta_M*, theta_M*', theta_M*'', tau_M*\n"
                       "(4.14)-(4.17) every DT up to --t-end; --di N adds tau_M_sent[k] = tau_M*[k + N]\n"
-                      "(torque sent N samples early for the input delay, Sec. 8.6).\n",
+                      "(torque sent N samples early for the input delay, Sec. 8.6).\n"
+                      "--ibffc: inversion-based feedforward instead: stable inversion of the ZOH arm\n"
+                      "(tau_M -> psi'(L), 16 states) for psi'(L)* = q'(t), modes |lambda| <= 1 forward and\n"
+                      "|lambda| > 1 backward in time over [-PRE, t-end] (--pre, default 2 s): CSV columns\n"
+                      "tau_M*, theta_M*, theta_M*', tau_M_sent; --rt/--rr set the beam damping\n"
+                      "(not given by the thesis; default 0.5, 0).\n",
                       run_traj});
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <string>
 
+#include "fracdesign/design/ibffc.hpp"
 #include "fracdesign/design/lqg.hpp"
 #include "fracdesign/design/trajectory.hpp"
 #include "fracdesign/reproduce.hpp"
@@ -77,6 +78,25 @@ CheckRegistrar stable({"wang.lqg.stable", "seed 004 Ch. 7, Exp. D on the unreduc
              std::to_string(c.gain_margin_db) + " dB, PM " + std::to_string(c.phase_margin_deg) +
              " deg, min|1+L| " + std::to_string(c.modulus_margin) + "; r_t = 0.5 (project choice)";
     return r;
+}});
+
+CheckRegistrar ibffc({"wang.ibffc.exact", "seed 004 Sec. 4.3, App. E/F: stable inversion, Table 8.5 trajectory", [] {
+    const auto p = table85();
+    const auto r = design::stable_inversion(arm_model(true), 1.2e-3, [&](double t) { return p.eval(t)[1]; }, -2.0, 4.5);
+    double pre = 0.0, post = 0.0;
+    for (size_t k = 0; k < r.t.size(); ++k) {
+        if (r.t[k] < 0.5) pre = std::max(pre, std::fabs(r.u[k]));
+        if (r.t[k] > 2.0) post = std::max(post, std::fabs(r.u[k]));
+    }
+    CheckOutcome o;
+    o.expected = {0.0};
+    o.got = {r.rel_rms};
+    o.tol = 1e-6;
+    o.note = "relative RMS of psi'(L) - q'(t) with the ideal torque driven through the ZOH arm model (16 states, "
+             "h = 1.2 ms, horizon [-2, 4.5] s, " + std::to_string(r.n_forward) + " modes forward, " +
+             std::to_string(r.n_backward) + " backward); pre-actuation max|tau| " + sci(pre) + " N m before 0.5 s, "
+             "post-actuation " + sci(post) + " N m after 2 s; r_t = 0.5 (project choice)";
+    return o;
 }});
 
 }  // namespace
