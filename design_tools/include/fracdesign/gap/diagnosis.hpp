@@ -1,0 +1,90 @@
+// diagnosis.hpp - the sim-to-real gap diagnosis: where the gap lies, which
+// unmodelled effect causes it, how far it shrinks (issue 10, docs/gap.md).
+//
+//  replay the nominal model on the recorded inputs (open or closed loop)
+//  -> residuals -> where (channel, band, mode, time window + operating condition)
+//  -> which (each effect fitted with Ceres on the fit part, scored on the
+//     held-out part with a parameter penalty; forward selection with a margin)
+//  -> how far (nrmse per channel and band before/after, parameters with std).
+#pragma once
+#include <Eigen/Dense>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "fracdesign/gap/effects.hpp"
+#include "fracdesign/gap/nominal.hpp"
+#include "fracdesign/gap/signals.hpp"
+
+namespace fracdesign {
+namespace gap {
+
+struct GapOptions {
+    std::vector<std::string> inputs;    // data columns driving the model (default: the model's names)
+    std::vector<std::string> outputs;   // compared outputs (default: model outputs present in the data)
+    std::vector<Effect> effects = all_effects();  // candidates tried
+    double holdout = 0.3;               // held-out tail fraction without a validation record
+    double param_penalty = 0.01;        // score = shrink - param_penalty * (number of fitted parameters)
+    double margin = 0.05;               // forward selection: relative held-out gap reduction needed to add an effect
+    int max_effects = 3;                // forward selection depth
+    int max_iterations = 30;            // Ceres iterations per start (half in forward selection)
+};
+
+struct FitReport {
+    std::vector<EffectInstance> effects;
+    std::vector<std::vector<double>> stddev;  // per effect, per parameter (NaN where not estimable)
+    std::vector<double> gap_after;            // nrmse per compared output, held-out
+    double gap = 0.0;                         // aggregate held-out gap sqrt(mean nrmse^2)
+    double shrink = 0.0;                      // 1 - gap / gap_before
+    double score = 0.0;                       // shrink - penalty * fitted parameters
+    int fitted_params = 0;
+    std::string solver;                       // Ceres BriefReport of the winning start
+    std::vector<std::vector<double>> band_nrmse;  // per band, per output, held-out
+};
+
+struct ModeCheck {
+    double f_hz, zeta;                // nominal mode
+    double residual_share;            // residual energy share in [f/1.5, 1.5 f]
+    double measured_peak_hz, model_peak_hz, peak_ratio;
+    std::string flag;                 // "ok", "shifted", "mis-damped"
+};
+
+struct Window {
+    double t0, t1;
+    double rms;                       // normalized residual rms in the window
+    std::string condition;
+};
+
+struct GapResult {
+    std::string model_name, data_source, eval_source;
+    double Ts = 0.0;
+    std::vector<std::string> outputs;
+    Eigen::Index fit_samples = 0, eval_first = 0, eval_samples = 0;
+    std::vector<double> gap_before;                 // nrmse per output, held-out
+    double gap_before_total = 0.0;
+    std::vector<std::vector<double>> bands;         // [lo, hi, share] of the nominal residual energy
+    std::vector<std::vector<double>> band_nrmse_before;  // per band, per output, held-out
+    std::vector<ModeCheck> modes;
+    std::vector<Window> windows;
+    std::vector<FitReport> candidates;              // best first (includes "none" as an empty set)
+    FitReport verdict;                              // forward selection result (empty effects: "none")
+    std::vector<std::string> skipped;               // effects not applicable, with the reason
+    // Traces for the report (evaluation record): time, measured, nominal, augmented.
+    Eigen::VectorXd t;
+    Eigen::MatrixXd measured, nominal, augmented;
+    // Nominal residual on the fit record, each output divided by its std (the "where" analysis input).
+    Eigen::VectorXd where_t;
+    Eigen::MatrixXd where_residual;
+    double seconds = 0.0;                           // wall time of the diagnosis
+};
+
+GapResult diagnose(const NominalModel& model, const Signals& data, const Signals* validate, const GapOptions& opt);
+
+// result.json (schema "frac.gap", version 1; keys of issue 10 plus details).
+nlohmann::json result_json(const GapResult& r);
+
+// Aggregate gap: sqrt(mean over outputs of nrmse^2).
+double total_gap(const std::vector<double>& nrmse);
+
+}  // namespace gap
+}  // namespace fracdesign

@@ -1,0 +1,64 @@
+// nominal.hpp - the nominal model the gap diagnosis replays on recorded data.
+//
+// Internally every nominal model is a discrete-time LTI plant at the data's
+// sample time, x(k+1) = A x(k) + B u(k), y(k) = C x(k) + D u(k), with named
+// inputs and outputs, plus, for closed-loop records, the known controller:
+//   w(k)  = [r(k); y_m(k)]          references from the data, measured model outputs
+//   xc(k+1) = Ac xc(k) + Bc w(k),   c(k) = Cc xc(k) + Dc w(k)
+//   u(k)  = sat(c(k - delay)) + a(k) additive data columns (e.g. injected pulses)
+// The document format (schema "frac.model", kind "state_space", with the
+// "gap" extension section for the loop and the friction hook-up) is described
+// in docs/gap.md.
+#pragma once
+#include <Eigen/Dense>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace fracdesign {
+namespace gap {
+
+struct ClosedLoop {
+    std::vector<std::string> references;  // data columns, the controller's reference inputs
+    std::vector<int> measured;            // model output indices fed back to the controller
+    Eigen::MatrixXd Ac, Bc, Cc, Dc;       // discrete at Ts; inputs [references; measured]; outputs = plant inputs
+    int delay_samples = 0;                // pure delay between controller and plant (computation delay)
+    double saturation = std::numeric_limits<double>::infinity();  // symmetric limit on the plant inputs
+    // Data columns added to the plant inputs after the saturation, the i-th to
+    // plant input i; a column absent from a record counts as zero there.
+    std::vector<std::string> additive;
+};
+
+struct Mode {
+    double f_hz;  // natural frequency
+    double zeta;  // damping ratio
+};
+
+struct NominalModel {
+    std::string name;
+    double Ts = 0.0;
+    Eigen::MatrixXd A, B, C, D;  // discrete at Ts
+    std::vector<std::string> inputs, outputs;
+    bool closed_loop = false;
+    ClosedLoop loop;
+    int velocity = -1;     // model output used as the friction velocity (-1: none)
+    int force_input = 0;   // plant input where friction, dead zone, backlash, gain and saturation act
+
+    int output_index(const std::string& name) const;  // -1 if absent
+    // Oscillatory and real modes of the nominal (loop closed when closed_loop,
+    // controller delay and saturation left out), as continuous-time equivalents.
+    std::vector<Mode> modes() const;
+};
+
+// Builds the model from a "frac.model" document, discretising a continuous
+// plant (and controller) with zero-order hold at Ts. std::runtime_error with
+// one clear message for a malformed document (dimensions, names, schema).
+NominalModel nominal_from_json(const nlohmann::json& doc, double Ts);
+NominalModel load_nominal_model(const std::string& path, double Ts);
+
+// Zero-order-hold discretisation: Ad = e^{A Ts}, Bd = int_0^Ts e^{A s} ds B.
+void zoh(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, double Ts, Eigen::MatrixXd& Ad, Eigen::MatrixXd& Bd);
+
+}  // namespace gap
+}  // namespace fracdesign

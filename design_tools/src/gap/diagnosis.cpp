@@ -1,0 +1,781 @@
+// diagnosis.cpp - where / which / how far (see diagnosis.hpp, docs/gap.md).
+#include "fracdesign/gap/diagnosis.hpp"
+
+#include <ceres/ceres.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+#include <unsupported/Eigen/FFT>
+
+namespace fracdesign {
+namespace gap {
+
+double total_gap(const std::vector<double>& nrmse)
+{
+    double s = 0;
+    for (double e : nrmse) s += e * e;
+    return nrmse.empty() ? 0.0 : std::sqrt(s / double(nrmse.size()));
+}
+
+namespace {
+
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double rms(const Eigen::VectorXd& v) { return v.size() ? std::sqrt(v.squaredNorm() / double(v.size())) : 0.0; }
+
+// nrmse = ||y - yhat|| / ||y - mean(y)|| per column.
+std::vector<double> nrmse(const Eigen::MatrixXd& y, const Eigen::MatrixXd& yhat)
+{
+    std::vector<double> out;
+    for (Eigen::Index c = 0; c < y.cols(); ++c) {
+        const Eigen::VectorXd d = y.col(c).array() - y.col(c).mean();
+        const double den = d.norm();
+        out.push_back(den > 0 ? (y.col(c) - yhat.col(c)).norm() / den : kNaN);
+    }
+    return out;
+}
+
+// ---- frequency bands ------------------------------------------------------
+
+std::vector<std::pair<double, double>> band_edges(double Ts)
+{
+    const double nyq = 0.5 / Ts;
+    std::vector<std::pair<double, double>> b;
+    double lo = 0.0, hi = 0.1;
+    while (lo < nyq) {
+        b.push_back({lo, std::min(hi, nyq)});
+        lo = hi;
+        hi *= 10.0;
+    }
+    return b;
+}
+
+// Power of two >= n: records are zero-padded before the FFT (a prime length
+// would fall back to an O(n^2) transform; padding keeps Parseval's total).
+Eigen::Index fft_length(Eigen::Index n)
+{
+    Eigen::Index p = 1;
+    while (p < n) p *= 2;
+    return p;
+}
+
+// Energy of each column of x in each band (Parseval: sum over bins |X_k|^2 / N = sum |x|^2).
+Eigen::MatrixXd band_energy(const Eigen::MatrixXd& x, double Ts, const std::vector<std::pair<double, double>>& bands)
+{
+    Eigen::FFT<double> fft;
+    const Eigen::Index N = fft_length(x.rows());
+    Eigen::MatrixXd E = Eigen::MatrixXd::Zero(Eigen::Index(bands.size()), x.cols());
+    for (Eigen::Index c = 0; c < x.cols(); ++c) {
+        std::vector<double> in(x.col(c).data(), x.col(c).data() + x.rows());
+        in.resize(size_t(N), 0.0);
+        std::vector<std::complex<double>> X;
+        fft.fwd(X, in);
+        for (Eigen::Index k = 0; k < N; ++k) {
+            const double f = double(std::min(k, N - k)) / (double(N) * Ts);
+            for (size_t b = 0; b < bands.size(); ++b)
+                if (f >= bands[b].first && (f < bands[b].second || b + 1 == bands.size())) {
+                    E(Eigen::Index(b), c) += std::norm(X[size_t(k)]) / double(N);
+                    break;
+                }
+        }
+    }
+    return E;
+}
+
+// Per band, per output: sqrt(band residual energy / energy of y about its mean).
+std::vector<std::vector<double>> band_nrmse(const Eigen::MatrixXd& y, const Eigen::MatrixXd& yhat, double Ts)
+{
+    const auto bands = band_edges(Ts);
+    const Eigen::MatrixXd E = band_energy(y - yhat, Ts, bands);
+    std::vector<std::vector<double>> out(bands.size());
+    for (size_t b = 0; b < bands.size(); ++b)
+        for (Eigen::Index c = 0; c < y.cols(); ++c) {
+            const double den = (y.col(c).array() - y.col(c).mean()).matrix().squaredNorm();
+            out[b].push_back(den > 0 ? std::sqrt(E(Eigen::Index(b), c) / den) : kNaN);
+        }
+    return out;
+}
+
+// Smoothed periodogram (5-bin moving average) of one signal, one-sided, on
+// the zero-padded length fft_length(x.size()).
+std::vector<double> smoothed_spectrum(const Eigen::VectorXd& x)
+{
+    Eigen::FFT<double> fft;
+    std::vector<double> in(x.data(), x.data() + x.size());
+    in.resize(size_t(fft_length(x.size())), 0.0);
+    std::vector<std::complex<double>> X;
+    fft.fwd(X, in);
+    const size_t H = X.size() / 2 + 1;
+    std::vector<double> P(H), S(H, 0.0);
+    for (size_t k = 0; k < H; ++k) P[k] = std::norm(X[k]);
+    for (size_t k = 0; k < H; ++k) {
+        int cnt = 0;
+        for (long j = long(k) - 2; j <= long(k) + 2; ++j)
+            if (j >= 0 && j < long(H)) {
+                S[k] += P[size_t(j)];
+                ++cnt;
+            }
+        S[k] /= cnt;
+    }
+    return S;
+}
+
+// ---- effect parameterisation ------------------------------------------------
+
+struct ParamSpec {
+    double scale;    // physical = scale * normalized
+    double lo, hi;   // normalized bounds
+    bool fixed;      // set by grid search, not by Ceres
+};
+
+struct EffectSetup {
+    Effect kind;
+    std::vector<ParamSpec> spec;
+    std::vector<std::vector<double>> starts;  // normalized start vectors
+    bool screen = false;                     // rank starts by cost before refining the best few
+};
+
+// Scales of the data the parameters are normalized by.
+struct Context {
+    double Ts, Su, Sv, umax, fit_seconds;
+    std::vector<double> Sy;                  // std of each compared output
+    std::vector<double> quant_step;          // smallest nonzero |diff| of each compared output
+    std::vector<double> residual_peaks_hz;   // largest peaks of the nominal residual spectrum
+    Eigen::Index fit_samples;
+};
+
+EffectSetup effect_setup(Effect e, const Context& c)
+{
+    EffectSetup s;
+    s.kind = e;
+    const size_t ny = c.Sy.size();
+    const double big = 1e3;
+    switch (e) {
+    case Effect::input_delay:
+    case Effect::output_delay: {
+        s.spec = {{c.Ts, 0, 1e9, true}};
+        const long dmax = std::max<long>(1, std::min<long>(50, long(c.fit_samples / 20)));
+        for (long d = 1; d <= dmax; ++d) s.starts.push_back({double(d)});
+        s.screen = true;
+        break;
+    }
+    case Effect::coulomb_friction:
+        s.spec = {{c.Su, 0, big, false}, {c.Su, -big, big, false}};
+        s.starts = {{0.05, 0.0}, {0.3, 0.0}};
+        break;
+    case Effect::viscous_friction:
+        s.spec = {{c.Su / c.Sv, -big, big, false}};
+        s.starts = {{0.1}};
+        break;
+    case Effect::stribeck_friction:
+        s.spec = {{c.Su, 0, big, false}, {c.Su, 0, big, false}, {c.Sv, 1e-3, 1e2, false}};
+        s.starts = {{0.05, 0.15, 0.1}, {0.2, 0.4, 0.3}};
+        break;
+    case Effect::backlash:
+    case Effect::deadzone:
+        s.spec = {{c.Su, 0, big, false}};
+        s.starts = {{0.02}, {0.1}, {0.4}};
+        break;
+    case Effect::saturation:
+        s.spec = {{c.umax, 0.02, 2.0, false}};
+        s.starts = {{0.5}, {0.8}, {0.95}};
+        break;
+    case Effect::fractional_damping:
+        s.spec = {{c.Su / c.Sv, -big, big, false}, {1.0, 0.05, 0.95, false}};
+        s.starts = {{0.1, 0.3}, {0.1, 0.7}};
+        break;
+    case Effect::unmodelled_mode: {
+        const double flo = std::max(2.0 / c.fit_seconds, 1e-3), fhi = 0.25 / c.Ts;
+        s.spec = {{1.0, flo, fhi, false}, {1.0, 0.005, 1.0, false}};
+        for (size_t i = 0; i < ny; ++i) s.spec.push_back({c.Sy[i] / c.Su, -big, big, false});
+        for (double f : c.residual_peaks_hz) {
+            if (f < flo || f > fhi) continue;
+            std::vector<double> st = {f, 0.05};
+            st.resize(2 + ny, 0.0);
+            s.starts.push_back(st);
+        }
+        break;
+    }
+    case Effect::gain_error:
+        s.spec = {{1.0, 0.05, 20.0, false}};
+        s.starts = {{1.0}, {0.7}, {1.4}};
+        break;
+    case Effect::sensor_offset:
+        for (size_t i = 0; i < ny; ++i) s.spec.push_back({c.Sy[i], -big, big, false});
+        s.starts = {std::vector<double>(ny, 0.0)};
+        break;
+    case Effect::quantization: {
+        std::vector<double> one, two;
+        for (size_t i = 0; i < ny; ++i) {
+            s.spec.push_back({1.0, 0, 1e300, true});
+            one.push_back(c.quant_step[i]);
+            two.push_back(2 * c.quant_step[i]);
+        }
+        s.starts = {one, two};
+        s.screen = true;
+        break;
+    }
+    }
+    return s;
+}
+
+// ---- fitting ---------------------------------------------------------------
+
+struct FitProblem {
+    const ReplaySetup* setup;
+    Eigen::MatrixXd y;                 // measured fit rows
+    std::vector<double> sigma;         // per output normalization
+    std::vector<EffectSetup> effects;
+    std::vector<double> base;          // full normalized vector
+    std::vector<int> free_idx;         // indices into base optimized by Ceres
+
+    std::vector<EffectInstance> instances(const std::vector<double>& theta) const
+    {
+        std::vector<EffectInstance> out;
+        size_t k = 0;
+        for (const EffectSetup& e : effects) {
+            EffectInstance in{e.kind, {}};
+            for (const ParamSpec& p : e.spec) in.params.push_back(p.scale * theta[k++]);
+            out.push_back(in);
+        }
+        return out;
+    }
+    void residuals(const std::vector<double>& theta, double* r) const
+    {
+        const ReplayTrace tr = replay(*setup, instances(theta), y.rows());
+        const Eigen::Index N = y.rows();
+        for (Eigen::Index c = 0; c < y.cols(); ++c)
+            for (Eigen::Index k = 0; k < N; ++k) {
+                const double e = (y(k, c) - tr.y(k, c)) / sigma[size_t(c)];
+                r[c * N + k] = std::isfinite(e) ? std::min(std::max(e, -1e6), 1e6) : 1e6;  // diverged replays stay finite
+            }
+    }
+    double cost(const std::vector<double>& theta) const
+    {
+        std::vector<double> r(size_t(y.size()));
+        residuals(theta, r.data());
+        double s = 0;
+        for (double e : r) s += e * e;
+        return 0.5 * s;
+    }
+};
+
+struct ReplayCost {
+    const FitProblem* P;
+    bool operator()(double const* const* params, double* residuals) const
+    {
+        std::vector<double> theta = P->base;
+        for (size_t i = 0; i < P->free_idx.size(); ++i) theta[size_t(P->free_idx[i])] = params[0][i];
+        P->residuals(theta, residuals);
+        return true;
+    }
+};
+
+struct FitOutcome {
+    std::vector<double> theta;
+    std::vector<double> stddev;  // normalized, per entry of theta (NaN for fixed)
+    double cost = std::numeric_limits<double>::infinity();
+    std::string brief;
+};
+
+// Least squares on the free parameters from theta0 (Levenberg-Marquardt,
+// forward numeric differences, one replay per parameter: the replay holds
+// clamp and rounding maps that automatic derivatives would differentiate
+// piecewise only, and each replay is a loop over the whole record).
+FitOutcome refine(FitProblem& P, const std::vector<double>& theta0, int max_iter)
+{
+    FitOutcome out;
+    out.theta = theta0;
+    out.stddev.assign(theta0.size(), kNaN);
+    P.free_idx.clear();
+    size_t k = 0;
+    for (const EffectSetup& e : P.effects)
+        for (const ParamSpec& p : e.spec) {
+            if (!p.fixed) P.free_idx.push_back(int(k));
+            ++k;
+        }
+    P.base = theta0;
+    if (P.free_idx.empty()) {
+        out.cost = P.cost(theta0);
+        out.brief = "no continuous parameters: grid value evaluated";
+        return out;
+    }
+    std::vector<double> x;
+    for (int i : P.free_idx) x.push_back(theta0[size_t(i)]);
+    ceres::Problem problem;
+    auto* cf = new ceres::DynamicNumericDiffCostFunction<ReplayCost, ceres::FORWARD>(new ReplayCost{&P});
+    cf->AddParameterBlock(int(x.size()));
+    cf->SetNumResiduals(int(P.y.size()));
+    problem.AddResidualBlock(cf, nullptr, x.data());
+    std::vector<ParamSpec> specs;
+    for (const EffectSetup& e : P.effects)
+        for (const ParamSpec& p : e.spec) specs.push_back(p);
+    for (size_t i = 0; i < P.free_idx.size(); ++i) {
+        const ParamSpec& p = specs[size_t(P.free_idx[i])];
+        x[i] = std::min(std::max(x[i], p.lo), p.hi);
+        problem.SetParameterLowerBound(x.data(), int(i), p.lo);
+        problem.SetParameterUpperBound(x.data(), int(i), p.hi);
+    }
+    ceres::Solver::Options so;
+    so.linear_solver_type = ceres::DENSE_QR;
+    so.max_num_iterations = max_iter;
+    so.function_tolerance = 1e-9;
+    so.num_threads = 1;
+    so.logging_type = ceres::SILENT;
+    ceres::Solver::Summary sum;
+    ceres::Solve(so, &problem, &sum);
+    out.brief = sum.BriefReport();
+    for (size_t i = 0; i < P.free_idx.size(); ++i) out.theta[size_t(P.free_idx[i])] = x[i];
+    out.cost = sum.final_cost;
+    // Parameter std from the Gauss-Newton covariance sigma^2 (J'J)^+ with the
+    // residual variance sigma^2 = 2 cost / (m - p); residuals are correlated
+    // in time, so this is optimistic.
+    double cost = 0;
+    ceres::CRSMatrix J;
+    problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, &J);
+    const size_t p = x.size();
+    Eigen::MatrixXd JtJ = Eigen::MatrixXd::Zero(Eigen::Index(p), Eigen::Index(p));
+    for (int r = 0; r < J.num_rows; ++r)
+        for (int a = J.rows[size_t(r)]; a < J.rows[size_t(r) + 1]; ++a)
+            for (int b = J.rows[size_t(r)]; b < J.rows[size_t(r) + 1]; ++b)
+                JtJ(J.cols[size_t(a)], J.cols[size_t(b)]) += J.values[size_t(a)] * J.values[size_t(b)];
+    const Eigen::MatrixXd C = JtJ.completeOrthogonalDecomposition().pseudoInverse();
+    const double s2 = 2.0 * cost / std::max(1.0, double(P.y.size()) - double(p));
+    for (size_t i = 0; i < p; ++i)
+        out.stddev[size_t(P.free_idx[i])] = C(Eigen::Index(i), Eigen::Index(i)) > 0 ? std::sqrt(C(Eigen::Index(i), Eigen::Index(i)) * s2) : kNaN;
+    return out;
+}
+
+// Fits the effect set: earlier effects start at `init`, the last one from each
+// of its starts (screened by cost first when it is a grid); returns the best.
+FitOutcome fit_set(FitProblem& P, const std::vector<double>& init, int max_iter)
+{
+    const EffectSetup& last = P.effects.back();
+    std::vector<std::vector<double>> starts;
+    for (const std::vector<double>& st : last.starts) {
+        std::vector<double> th = init;
+        th.insert(th.end(), st.begin(), st.end());
+        starts.push_back(th);
+    }
+    if (last.screen && starts.size() > 3) {
+        std::vector<std::pair<double, size_t>> c;
+        for (size_t i = 0; i < starts.size(); ++i) c.push_back({P.cost(starts[i]), i});
+        std::sort(c.begin(), c.end());
+        std::vector<std::vector<double>> keep;
+        for (size_t i = 0; i < 3; ++i) keep.push_back(starts[c[i].second]);
+        starts = keep;
+    }
+    FitOutcome best;
+    for (const std::vector<double>& st : starts) {
+        FitOutcome o = refine(P, st, max_iter);
+        if (o.cost < best.cost) best = o;
+    }
+    return best;
+}
+
+struct Evaluator {
+    const ReplaySetup* eval;
+    Eigen::MatrixXd y_eval;  // measured held-out rows
+    Eigen::Index first, n;
+    double gap_before;
+    double Ts;
+
+    Eigen::MatrixXd simulate(const std::vector<EffectInstance>& eff) const
+    {
+        const ReplayTrace tr = replay(*eval, eff, first + n);
+        return tr.y.bottomRows(n);
+    }
+};
+
+FitReport make_report(const FitProblem& P, const FitOutcome& o, const Evaluator& E, double penalty)
+{
+    FitReport r;
+    r.effects = P.instances(o.theta);
+    size_t k = 0;
+    for (const EffectSetup& e : P.effects) {
+        std::vector<double> sd;
+        for (const ParamSpec& p : e.spec) {
+            sd.push_back(p.fixed ? kNaN : p.scale * o.stddev[k]);
+            r.fitted_params += 1;
+            ++k;
+        }
+        r.stddev.push_back(sd);
+    }
+    const Eigen::MatrixXd yhat = E.simulate(r.effects);
+    r.gap_after = nrmse(E.y_eval, yhat);
+    r.gap = total_gap(r.gap_after);
+    if (!std::isfinite(r.gap)) r.gap = std::numeric_limits<double>::infinity();
+    r.shrink = E.gap_before > 0 ? 1.0 - r.gap / E.gap_before : 0.0;
+    r.score = r.shrink - penalty * r.fitted_params;
+    r.solver = o.brief;
+    r.band_nrmse = band_nrmse(E.y_eval, yhat, E.Ts);
+    return r;
+}
+
+std::vector<double> normalized(const FitProblem& P, const std::vector<EffectInstance>& eff)
+{
+    std::vector<double> th;
+    for (size_t i = 0; i < eff.size(); ++i)
+        for (size_t j = 0; j < eff[i].params.size(); ++j) th.push_back(eff[i].params[j] / P.effects[i].spec[j].scale);
+    return th;
+}
+
+// ---- where: time windows ------------------------------------------------------
+
+std::vector<Window> flag_windows(const Eigen::VectorXd& res, const ReplayTrace& nom, double Ts, double t0,
+                                 double torque_limit)
+{
+    const Eigen::Index N = res.size();
+    const Eigen::Index W = std::max<Eigen::Index>(10, N / 40);
+    std::vector<double> wr;
+    for (Eigen::Index s = 0; s + W <= N; s += W) wr.push_back(rms(res.segment(s, W)));
+    if (wr.empty()) return {};
+    std::vector<double> sorted = wr;
+    std::sort(sorted.begin(), sorted.end());
+    const double med = sorted[sorted.size() / 2], q75 = sorted[sorted.size() * 3 / 4];
+    const double vmax = nom.v.cwiseAbs().maxCoeff();
+    Eigen::VectorXd a = Eigen::VectorXd::Zero(N);
+    for (Eigen::Index k = 1; k < N; ++k) a(k) = (nom.v(k) - nom.v(k - 1)) / Ts;
+    const double amax = a.cwiseAbs().maxCoeff();
+    std::vector<Window> out;
+    for (size_t i = 0; i < wr.size(); ++i) {
+        if (!(wr[i] >= 2.0 * med && wr[i] >= q75 && wr[i] > 0)) continue;
+        const Eigen::Index s = Eigen::Index(i) * W;
+        std::vector<std::string> cond;
+        if (vmax > 0) {
+            bool reversal = false;
+            for (Eigen::Index k = s; k + 1 < s + W; ++k)
+                if (nom.v(k) * nom.v(k + 1) < 0) reversal = true;
+            const Eigen::VectorXd seg = nom.v.segment(s, W).cwiseAbs();
+            if (reversal && seg.maxCoeff() > 0.05 * vmax) cond.push_back("velocity reversal");
+            std::vector<double> sv(seg.data(), seg.data() + W);
+            std::nth_element(sv.begin(), sv.begin() + W / 2, sv.end());
+            if (sv[size_t(W / 2)] < 0.02 * vmax) cond.push_back("standstill");
+            if (amax > 0 && a.segment(s, W).cwiseAbs().maxCoeff() > 0.5 * amax) cond.push_back("high acceleration");
+        }
+        if (torque_limit > 0 && nom.u.segment(s, W).cwiseAbs().maxCoeff() >= 0.9 * torque_limit)
+            cond.push_back("near torque limit");
+        std::string c;
+        for (const std::string& x : cond) c += (c.empty() ? "" : "+") + x;
+        if (c.empty()) c = "steady motion";
+        const double ta = t0 + double(s) * Ts, tb = t0 + double(s + W) * Ts;
+        if (!out.empty() && std::fabs(out.back().t1 - ta) < 0.5 * Ts && out.back().condition == c) {
+            out.back().t1 = tb;
+            out.back().rms = std::max(out.back().rms, wr[i]);
+        } else {
+            out.push_back({ta, tb, wr[i], c});
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
+GapResult diagnose(const NominalModel& model, const Signals& data, const Signals* validate, const GapOptions& opt)
+{
+    const auto t_start = std::chrono::steady_clock::now();
+    GapResult R;
+    R.model_name = model.name;
+    R.data_source = data.source;
+    R.Ts = data.Ts;
+    if (validate && std::fabs(validate->Ts - data.Ts) > 1e-3 * data.Ts)
+        throw std::runtime_error("the validation record's sample time differs from the data's");
+    if (!(opt.holdout > 0 && opt.holdout < 1)) throw std::runtime_error("held-out fraction must be in (0, 1)");
+    std::vector<std::string> outs = opt.outputs;
+    if (outs.empty())
+        for (const std::string& o : model.outputs)
+            if (data.has(o)) outs.push_back(o);
+    if (outs.empty())
+        throw std::runtime_error("model/data mismatch: none of the model outputs is a column of " + data.source);
+    R.outputs = outs;
+    ReplaySetup fit_setup = make_replay_setup(model, data, opt.inputs, outs);
+    ReplaySetup eval_setup_v;
+    if (validate) eval_setup_v = make_replay_setup(model, *validate, opt.inputs, outs);
+    const ReplaySetup& eval_setup = validate ? eval_setup_v : fit_setup;
+    const Eigen::Index N = data.samples();
+    R.fit_samples = validate ? N : Eigen::Index(std::floor((1.0 - opt.holdout) * double(N)));
+    R.eval_first = validate ? 0 : R.fit_samples;
+    R.eval_samples = validate ? validate->samples() : N - R.fit_samples;
+    R.eval_source = validate ? validate->source : data.source + " (last " + std::to_string(int(opt.holdout * 100 + 0.5)) + " %)";
+    if (R.fit_samples < 20 || R.eval_samples < 20) throw std::runtime_error("record too short to split into fit and held-out parts");
+
+    Eigen::MatrixXd ymeas(N, Eigen::Index(outs.size()));
+    for (size_t c = 0; c < outs.size(); ++c) ymeas.col(Eigen::Index(c)) = data.col(outs[c]);
+    const Signals& evsig = validate ? *validate : data;
+    Eigen::MatrixXd yeval(R.eval_samples, Eigen::Index(outs.size()));
+    for (size_t c = 0; c < outs.size(); ++c)
+        yeval.col(Eigen::Index(c)) = evsig.col(outs[c]).segment(R.eval_first, R.eval_samples);
+
+    // Nominal replay and its residuals.
+    const ReplayTrace nom = replay(fit_setup, {});
+    if (!nom.y.allFinite()) throw std::runtime_error("the nominal model diverges on the recorded inputs");
+    Context ctx;
+    ctx.Ts = data.Ts;
+    ctx.fit_samples = R.fit_samples;
+    ctx.fit_seconds = double(R.fit_samples) * data.Ts;
+    ctx.Su = std::max(rms(nom.u.head(R.fit_samples)), 1e-12);
+    ctx.Sv = std::max(rms(nom.v.head(R.fit_samples)), 1e-12);
+    ctx.umax = std::max(nom.u.head(R.fit_samples).cwiseAbs().maxCoeff(), 1e-12);
+    fit_setup.eps_velocity = 0.01 * ctx.Sv;
+    if (validate) eval_setup_v.eps_velocity = fit_setup.eps_velocity;
+    std::vector<double> sigma;
+    Eigen::MatrixXd resn(N, Eigen::Index(outs.size()));
+    for (size_t c = 0; c < outs.size(); ++c) {
+        const Eigen::VectorXd yc = ymeas.col(Eigen::Index(c)).head(R.fit_samples);
+        const double sd = std::sqrt((yc.array() - yc.mean()).square().mean());
+        sigma.push_back(sd > 0 ? sd : 1.0);
+        ctx.Sy.push_back(sigma.back());
+        double q = std::numeric_limits<double>::infinity();
+        for (Eigen::Index k = 1; k < R.fit_samples; ++k) {
+            const double d = std::fabs(yc(k) - yc(k - 1));
+            if (d > 1e-12 * sigma.back()) q = std::min(q, d);
+        }
+        ctx.quant_step.push_back(std::isfinite(q) ? q : 0.0);
+        resn.col(Eigen::Index(c)) = (ymeas.col(Eigen::Index(c)) - nom.y.col(Eigen::Index(c))) / sigma.back();
+    }
+    // Residual peaks (fit part), for the mode candidates' start frequencies.
+    {
+        Eigen::VectorXd rsum = resn.topRows(R.fit_samples).rowwise().sum();
+        rsum.array() -= rsum.mean();
+        const std::vector<double> S = smoothed_spectrum(rsum);
+        const double df = 1.0 / (double(fft_length(R.fit_samples)) * data.Ts);
+        std::vector<std::pair<double, size_t>> peaks;
+        for (size_t k = 2; k + 1 < S.size(); ++k)
+            if (S[k] >= S[k - 1] && S[k] >= S[k + 1]) peaks.push_back({S[k], k});
+        std::sort(peaks.rbegin(), peaks.rend());
+        for (size_t i = 0; i < peaks.size() && ctx.residual_peaks_hz.size() < 3; ++i) {
+            const double f = double(peaks[i].second) * df;
+            bool near = false;
+            for (double g : ctx.residual_peaks_hz) near = near || std::fabs(f - g) < 0.2 * g;
+            if (!near) ctx.residual_peaks_hz.push_back(f);
+        }
+    }
+
+    Evaluator E{&eval_setup, yeval, R.eval_first, R.eval_samples, 0.0, data.Ts};
+    const Eigen::MatrixXd yhat_nom = E.simulate({});
+    R.gap_before = nrmse(yeval, yhat_nom);
+    R.gap_before_total = total_gap(R.gap_before);
+    E.gap_before = R.gap_before_total;
+    R.band_nrmse_before = band_nrmse(yeval, yhat_nom, data.Ts);
+
+    // Where: bands of the nominal residual (whole record, normalized outputs).
+    const auto bands = band_edges(data.Ts);
+    {
+        Eigen::MatrixXd r0 = resn;
+        const Eigen::MatrixXd Eb = band_energy(r0, data.Ts, bands);
+        const double tot = Eb.sum();
+        for (size_t b = 0; b < bands.size(); ++b)
+            R.bands.push_back({bands[b].first, bands[b].second, tot > 0 ? Eb.row(Eigen::Index(b)).sum() / tot : 0.0});
+    }
+    // Where: modes of the nominal, checked against the measured spectrum.
+    for (const Mode& md : model.modes()) {
+        if (md.zeta >= 0.9 || md.f_hz > 0.4 / data.Ts || md.f_hz * double(N) * data.Ts < 4) continue;
+        ModeCheck mc{md.f_hz, md.zeta, 0, 0, 0, 0, "ok"};
+        const double flo = md.f_hz / 1.5, fhi = md.f_hz * 1.5, df = 1.0 / (double(fft_length(N)) * data.Ts);
+        double share = 0, tot = 0, pm = 0, ps = 0;
+        for (size_t c = 0; c < outs.size(); ++c) {
+            Eigen::VectorXd a = ymeas.col(Eigen::Index(c)), b = nom.y.col(Eigen::Index(c)), r = resn.col(Eigen::Index(c));
+            a.array() -= a.mean();
+            b.array() -= b.mean();
+            const std::vector<double> Sa = smoothed_spectrum(a), Sb = smoothed_spectrum(b), Sr = smoothed_spectrum(r);
+            for (size_t k = 1; k < Sa.size(); ++k) {
+                const double f = double(k) * df;
+                tot += Sr[k];
+                if (f < flo || f > fhi) continue;
+                share += Sr[k];
+                if (Sa[k] > pm) { pm = Sa[k]; mc.measured_peak_hz = f; }
+                if (Sb[k] > ps) { ps = Sb[k]; mc.model_peak_hz = f; }
+            }
+        }
+        mc.residual_share = tot > 0 ? share / tot : 0;
+        mc.peak_ratio = ps > 0 ? pm / ps : kNaN;
+        if (std::fabs(mc.measured_peak_hz - mc.model_peak_hz) > 0.1 * md.f_hz) mc.flag = "shifted";
+        else if (mc.peak_ratio > 2.0 || mc.peak_ratio < 0.5) mc.flag = "mis-damped";
+        R.modes.push_back(mc);
+    }
+    // Where: time windows with their operating condition.
+    {
+        Eigen::VectorXd r = resn.rowwise().norm() / std::sqrt(double(outs.size()));
+        const double limit = std::isfinite(model.loop.saturation) && model.closed_loop ? model.loop.saturation : nom.u.cwiseAbs().maxCoeff();
+        R.windows = flag_windows(r, nom, data.Ts, data.t0, limit);
+    }
+
+    // Which: every candidate alone.
+    FitProblem base_problem;
+    base_problem.setup = &fit_setup;
+    base_problem.y = ymeas.topRows(R.fit_samples);
+    base_problem.sigma = sigma;
+    std::vector<std::pair<FitReport, EffectSetup>> singles;
+    for (Effect e : opt.effects) {
+        if (needs_velocity(e) && model.velocity < 0) {
+            R.skipped.push_back(effect_name(e) + ": the model names no velocity output (gap.velocity)");
+            continue;
+        }
+        EffectSetup es = effect_setup(e, ctx);
+        if (es.starts.empty() || (e == Effect::quantization && *std::min_element(ctx.quant_step.begin(), ctx.quant_step.end()) <= 0)) {
+            R.skipped.push_back(effect_name(e) + ": no start value from the data");
+            continue;
+        }
+        FitProblem P = base_problem;
+        P.effects = {es};
+        const FitOutcome o = fit_set(P, {}, opt.max_iterations);
+        singles.push_back({make_report(P, o, E, opt.param_penalty), es});
+    }
+    for (const auto& s : singles) R.candidates.push_back(s.first);
+    FitReport none;
+    none.gap_after = R.gap_before;
+    none.gap = R.gap_before_total;
+    none.band_nrmse = R.band_nrmse_before;
+    none.solver = "nominal model";
+    R.candidates.push_back(none);
+    std::stable_sort(R.candidates.begin(), R.candidates.end(),
+                     [](const FitReport& a, const FitReport& b) { return a.score > b.score; });
+    std::sort(singles.begin(), singles.end(),
+              [](const std::pair<FitReport, EffectSetup>& a, const std::pair<FitReport, EffectSetup>& b) {
+                  return a.first.score > b.first.score;
+              });
+
+    // Forward selection: add the best, refit all jointly, repeat while the
+    // held-out gap shrinks by at least `margin` (relative) and the penalized score grows.
+    R.verdict = none;
+    if (!singles.empty() && singles.front().first.score >= opt.margin) {
+        FitProblem cur = base_problem;
+        cur.effects = {singles.front().second};
+        FitReport best = singles.front().first;
+        std::vector<double> theta = normalized(cur, best.effects);
+        std::vector<bool> used(singles.size(), false);
+        used[0] = true;
+        while (int(cur.effects.size()) < opt.max_effects) {
+            int pick = -1;
+            FitReport pick_rep;
+            std::vector<double> pick_theta;
+            FitProblem pick_prob;
+            int tried = 0;
+            for (size_t i = 0; i < singles.size() && tried < 3; ++i) {
+                if (used[i] || singles[i].first.score <= 0) continue;
+                ++tried;
+                // The new effect starts from its single fit, the others from the current set.
+                FitProblem P = cur;
+                EffectSetup es = singles[i].second;
+                FitProblem solo = base_problem;
+                solo.effects = {es};
+                es.starts = {normalized(solo, singles[i].first.effects)};
+                P.effects.push_back(es);
+                const FitOutcome o = fit_set(P, theta, opt.max_iterations / 2);
+                FitReport rep = make_report(P, o, E, opt.param_penalty);
+                if (pick < 0 || rep.gap < pick_rep.gap) {
+                    pick = int(i);
+                    pick_rep = rep;
+                    pick_theta = o.theta;
+                    pick_prob = P;
+                }
+            }
+            if (pick < 0 || !(pick_rep.gap <= (1.0 - opt.margin) * best.gap) || pick_rep.score <= best.score) break;
+            used[size_t(pick)] = true;
+            cur = pick_prob;
+            theta = pick_theta;
+            best = pick_rep;
+        }
+        R.verdict = best;
+    }
+
+    // Traces for the report.
+    const Eigen::Index n_tr = R.eval_first + R.eval_samples;
+    const ReplayTrace aug = replay(eval_setup, R.verdict.effects, n_tr);
+    const ReplayTrace nomtr = replay(eval_setup, {}, n_tr);
+    R.t = Eigen::VectorXd::LinSpaced(n_tr, evsig.t0, evsig.t0 + double(n_tr - 1) * data.Ts);
+    R.measured.resize(n_tr, Eigen::Index(outs.size()));
+    for (size_t c = 0; c < outs.size(); ++c) R.measured.col(Eigen::Index(c)) = evsig.col(outs[c]).head(n_tr);
+    R.nominal = nomtr.y;
+    R.augmented = aug.y;
+    R.where_t = Eigen::VectorXd::LinSpaced(N, data.t0, data.t0 + double(N - 1) * data.Ts);
+    R.where_residual = resn;
+    R.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+    return R;
+}
+
+namespace {
+
+nlohmann::json num(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+
+nlohmann::json per_output(const std::vector<std::string>& outs, const std::vector<double>& v)
+{
+    nlohmann::json j = nlohmann::json::object();
+    for (size_t i = 0; i < outs.size() && i < v.size(); ++i) j[outs[i]] = num(v[i]);
+    return j;
+}
+
+nlohmann::json fit_json(const GapResult& R, const FitReport& f, const std::vector<std::pair<double, double>>& bands)
+{
+    nlohmann::json params = nlohmann::json::object(), sd = nlohmann::json::object();
+    std::vector<std::string> names;
+    for (size_t i = 0; i < f.effects.size(); ++i) {
+        const std::vector<std::string> pn = param_names(f.effects[i].kind, R.outputs);
+        const std::string prefix = f.effects.size() > 1 ? effect_name(f.effects[i].kind) + "." : "";
+        for (size_t j = 0; j < pn.size(); ++j) {
+            params[prefix + pn[j]] = num(f.effects[i].params[j]);
+            sd[prefix + pn[j]] = num(f.stddev[i][j]);
+        }
+        names.push_back(effect_name(f.effects[i].kind));
+    }
+    nlohmann::json bj = nlohmann::json::array();
+    for (size_t b = 0; b < f.band_nrmse.size() && b < bands.size(); ++b)
+        bj.push_back({{"band_hz", {bands[b].first, bands[b].second}}, {"nrmse", per_output(R.outputs, f.band_nrmse[b])}});
+    nlohmann::json j = {{"params", params},         {"params_std", sd},     {"gap_after", per_output(R.outputs, f.gap_after)},
+                        {"gap_after_total", num(f.gap)}, {"shrink", num(f.shrink)}, {"score", num(f.score)},
+                        {"fitted_params", f.fitted_params}, {"bands", bj}, {"solver", f.solver}};
+    if (names.empty()) names.push_back("none");
+    j["effects"] = names;
+    return j;
+}
+
+}  // namespace
+
+nlohmann::json result_json(const GapResult& R)
+{
+    const auto bands = band_edges(R.Ts);
+    nlohmann::json j;
+    j["schema"] = "frac.gap";
+    j["version"] = 1;
+    j["metric"] = "nrmse";
+    j["gap_before"] = per_output(R.outputs, R.gap_before);
+    nlohmann::json bj = nlohmann::json::array(), wj = nlohmann::json::array(), mj = nlohmann::json::array();
+    for (const auto& b : R.bands) bj.push_back({b[0], b[1], b[2]});
+    for (const Window& w : R.windows) wj.push_back({w.t0, w.t1, w.condition});
+    for (const ModeCheck& m : R.modes)
+        mj.push_back({{"f_hz", m.f_hz}, {"zeta", m.zeta}, {"residual_share", num(m.residual_share)},
+                      {"measured_peak_hz", num(m.measured_peak_hz)}, {"model_peak_hz", num(m.model_peak_hz)},
+                      {"peak_ratio", num(m.peak_ratio)}, {"flag", m.flag}});
+    j["where"] = {{"outputs", R.outputs}, {"bands_hz", bj}, {"windows_s", wj}, {"modes", mj}};
+    nlohmann::json cj = nlohmann::json::array();
+    for (const FitReport& f : R.candidates) {
+        nlohmann::json c = fit_json(R, f, bands);
+        c["effect"] = c["effects"][0];
+        c.erase("effects");
+        cj.push_back(c);
+    }
+    j["candidates"] = cj;
+    j["verdict"] = fit_json(R, R.verdict, bands);
+    nlohmann::json bb = nlohmann::json::array();
+    for (size_t b = 0; b < R.band_nrmse_before.size() && b < bands.size(); ++b)
+        bb.push_back({{"band_hz", {bands[b].first, bands[b].second}}, {"nrmse", per_output(R.outputs, R.band_nrmse_before[b])}});
+    j["gap_before_total"] = num(R.gap_before_total);
+    j["gap_before_bands"] = bb;
+    j["criterion"] = {{"gap", "sqrt(mean over outputs of nrmse^2) on held-out data"},
+                      {"shrink", "1 - gap_after/gap_before"},
+                      {"score", "shrink - 0.01 * fitted parameters"},
+                      {"forward_selection", "add the best-scoring effect, refit jointly, keep it while the gap falls by >= 5 % (relative) and the score rises"}};
+    j["data"] = {{"model", R.model_name}, {"fit", R.data_source}, {"held_out", R.eval_source},
+                 {"fit_samples", R.fit_samples}, {"held_out_samples", R.eval_samples}, {"Ts", R.Ts}};
+    j["skipped"] = R.skipped;
+    j["seconds"] = R.seconds;
+    return j;
+}
+
+}  // namespace gap
+}  // namespace fracdesign

@@ -1,0 +1,378 @@
+// effects.cpp - the candidate effects and the augmented replay (see effects.hpp
+// and docs/gap.md for the equations).
+#include "fracdesign/gap/effects.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace fracdesign {
+namespace gap {
+
+const std::vector<Effect>& all_effects()
+{
+    static const std::vector<Effect> v = {
+        Effect::input_delay,        Effect::output_delay,    Effect::coulomb_friction, Effect::viscous_friction,
+        Effect::stribeck_friction,  Effect::backlash,        Effect::deadzone,         Effect::saturation,
+        Effect::fractional_damping, Effect::unmodelled_mode, Effect::gain_error,       Effect::sensor_offset,
+        Effect::quantization};
+    return v;
+}
+
+std::string effect_name(Effect e)
+{
+    switch (e) {
+    case Effect::input_delay: return "input_delay";
+    case Effect::output_delay: return "output_delay";
+    case Effect::coulomb_friction: return "coulomb_friction";
+    case Effect::viscous_friction: return "viscous_friction";
+    case Effect::stribeck_friction: return "stribeck_friction";
+    case Effect::backlash: return "backlash";
+    case Effect::deadzone: return "deadzone";
+    case Effect::saturation: return "saturation";
+    case Effect::fractional_damping: return "fractional_damping";
+    case Effect::unmodelled_mode: return "unmodelled_mode";
+    case Effect::gain_error: return "gain_error";
+    case Effect::sensor_offset: return "sensor_offset";
+    case Effect::quantization: return "quantization";
+    }
+    return "?";
+}
+
+Effect effect_from_name(const std::string& name)
+{
+    for (Effect e : all_effects())
+        if (effect_name(e) == name) return e;
+    throw std::invalid_argument("unknown effect '" + name + "'");
+}
+
+bool needs_velocity(Effect e)
+{
+    return e == Effect::coulomb_friction || e == Effect::viscous_friction || e == Effect::stribeck_friction ||
+           e == Effect::fractional_damping;
+}
+
+std::vector<std::string> param_names(Effect e, const std::vector<std::string>& outputs)
+{
+    auto per_output = [&](const std::string& prefix) {
+        std::vector<std::string> v;
+        for (const std::string& o : outputs) v.push_back(prefix + o);
+        return v;
+    };
+    switch (e) {
+    case Effect::input_delay:
+    case Effect::output_delay: return {"delay_s"};
+    case Effect::coulomb_friction: return {"Fc", "offset"};
+    case Effect::viscous_friction: return {"Fv"};
+    case Effect::stribeck_friction: return {"Fc", "Fs", "vs"};
+    case Effect::backlash: return {"width"};
+    case Effect::deadzone: return {"half_width"};
+    case Effect::saturation: return {"limit"};
+    case Effect::fractional_damping: return {"c", "alpha"};
+    case Effect::unmodelled_mode: {
+        std::vector<std::string> v = {"f_hz", "zeta"};
+        for (const std::string& g : per_output("gain_")) v.push_back(g);
+        return v;
+    }
+    case Effect::gain_error: return {"gain"};
+    case Effect::sensor_offset: return per_output("offset_");
+    case Effect::quantization: return per_output("step_");
+    }
+    return {};
+}
+
+ReplaySetup make_replay_setup(const NominalModel& m, const Signals& data, const std::vector<std::string>& inputs,
+                              const std::vector<std::string>& outputs)
+{
+    ReplaySetup s;
+    s.model = &m;
+    const Eigen::Index N = data.samples();
+    std::vector<std::string> drive = m.closed_loop ? m.loop.references : m.inputs;
+    const std::string what = m.closed_loop ? "references" : "inputs";
+    if (!inputs.empty()) {
+        if (inputs.size() != drive.size())
+            throw std::runtime_error("model/data mismatch: --inputs names " + std::to_string(inputs.size()) +
+                                     " columns but the model has " + std::to_string(drive.size()) + " " + what);
+        drive = inputs;
+    }
+    for (const std::string& d : drive)
+        if (!data.has(d))
+            throw std::runtime_error("model/data mismatch: the model's " + what.substr(0, what.size() - 1) + " '" + d +
+                                     "' is not a column of " + data.source);
+    std::vector<std::string> exo_names = drive;
+    if (m.closed_loop)
+        for (const std::string& a : m.loop.additive) exo_names.push_back(a);
+    s.exo = Eigen::MatrixXd::Zero(N, Eigen::Index(exo_names.size()));
+    for (size_t j = 0; j < exo_names.size(); ++j)
+        if (data.has(exo_names[j])) s.exo.col(Eigen::Index(j)) = data.col(exo_names[j]);
+    for (const std::string& o : outputs) {
+        const int i = m.output_index(o);
+        if (i < 0) throw std::runtime_error("model/data mismatch: '" + o + "' is not an output of the model");
+        if (!data.has(o)) throw std::runtime_error("model/data mismatch: output '" + o + "' is not a column of " + data.source);
+        s.compared.push_back(i);
+    }
+    if (s.compared.empty()) throw std::runtime_error("model/data mismatch: no model output is a column of " + data.source);
+    // Initial state: least squares through the first measured sample.
+    Eigen::MatrixXd Cc(s.compared.size(), m.A.rows());
+    Eigen::VectorXd y0(s.compared.size());
+    for (size_t i = 0; i < s.compared.size(); ++i) {
+        Cc.row(Eigen::Index(i)) = m.C.row(s.compared[i]);
+        y0(Eigen::Index(i)) = data.col(outputs[i])(0);
+    }
+    s.x0 = Cc.completeOrthogonalDecomposition().solve(y0);
+    if (m.closed_loop) {
+        // Controller state in steady state with the first reference and measurement, when one exists.
+        const Eigen::Index nc = m.loop.Ac.rows();
+        Eigen::VectorXd w(m.loop.Bc.cols());
+        for (size_t j = 0; j < m.loop.references.size(); ++j) w(Eigen::Index(j)) = s.exo(0, Eigen::Index(j));
+        for (size_t j = 0; j < m.loop.measured.size(); ++j)
+            w(Eigen::Index(m.loop.references.size() + j)) = m.C.row(m.loop.measured[j]).dot(s.x0);
+        s.xc0 = Eigen::VectorXd::Zero(nc);
+        if (nc > 0) {
+            const Eigen::MatrixXd IA = Eigen::MatrixXd::Identity(nc, nc) - m.loop.Ac;
+            Eigen::FullPivLU<Eigen::MatrixXd> lu(IA);
+            if (lu.isInvertible()) s.xc0 = lu.solve(m.loop.Bc * w);
+        }
+    }
+    return s;
+}
+
+namespace {
+
+// Ring buffer holding the last `len` vectors of dimension `dim`.
+struct History {
+    std::vector<double> buf;
+    int dim = 0, len = 0, head = 0;
+    void init(int d, int l, const double* fill)
+    {
+        dim = d;
+        len = std::max(l, 1);
+        buf.assign(size_t(dim) * size_t(len), 0.0);
+        for (int i = 0; i < len; ++i) std::copy(fill, fill + dim, buf.begin() + long(i) * dim);
+        head = 0;
+    }
+    void push(const double* x)
+    {
+        std::copy(x, x + dim, buf.begin() + long(head) * dim);
+        head = (head + 1) % len;
+    }
+    // Value pushed `lag` pushes ago (lag 1 = the latest).
+    const double* lagged(int lag) const { return &buf[size_t(((head - lag) % len + len) % len) * size_t(dim)]; }
+};
+
+double tanh_sign(double v, double eps) { return std::tanh(v / eps); }
+
+}  // namespace
+
+ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effects, Eigen::Index n)
+{
+    const NominalModel& m = *s.model;
+    const Eigen::Index N = n < 0 ? s.samples() : std::min(n, s.samples());
+    const int nx = int(m.A.rows()), nu = int(m.B.cols()), ny = int(m.C.rows());
+    const int ncmp = int(s.compared.size()), fi = m.force_input;
+    const double Ts = m.Ts, inf = std::numeric_limits<double>::infinity();
+
+    // Effect parameters (absent effects leave the nominal unchanged).
+    int din = 0, dout = 0;
+    double Fc = 0, Foff = 0, Fv = 0, Sc = 0, Ss = 0, Svs = 1, bl = -1, dz = 0, sat = inf, fc = 0, alpha = 0.5, gain = 1;
+    bool stribeck = false, fractional = false, mode = false;
+    double f_hz = 1, zeta = 0.1;
+    std::vector<double> mode_gain(size_t(ny), 0.0), offset(size_t(ny), 0.0), step(size_t(ny), 0.0);
+    for (const EffectInstance& e : effects) {
+        const std::vector<double>& p = e.params;
+        switch (e.kind) {
+        case Effect::input_delay: din = std::max(0, int(std::lround(p[0] / Ts))); break;
+        case Effect::output_delay: dout = std::max(0, int(std::lround(p[0] / Ts))); break;
+        case Effect::coulomb_friction: Fc = p[0]; Foff = p[1]; break;
+        case Effect::viscous_friction: Fv = p[0]; break;
+        case Effect::stribeck_friction: stribeck = true; Sc = p[0]; Ss = p[1]; Svs = std::max(std::fabs(p[2]), 1e-12); break;
+        case Effect::backlash: bl = std::fabs(p[0]); break;
+        case Effect::deadzone: dz = std::fabs(p[0]); break;
+        case Effect::saturation: sat = std::max(std::fabs(p[0]), 1e-12); break;
+        case Effect::fractional_damping: fractional = true; fc = p[0]; alpha = p[1]; break;
+        case Effect::unmodelled_mode:
+            mode = true; f_hz = p[0]; zeta = p[1];
+            for (int c = 0; c < ncmp; ++c) mode_gain[size_t(s.compared[size_t(c)])] = p[size_t(2 + c)];
+            break;
+        case Effect::gain_error: gain = p[0]; break;
+        case Effect::sensor_offset:
+            for (int c = 0; c < ncmp; ++c) offset[size_t(s.compared[size_t(c)])] = p[size_t(c)];
+            break;
+        case Effect::quantization:
+            for (int c = 0; c < ncmp; ++c) step[size_t(s.compared[size_t(c)])] = std::fabs(p[size_t(c)]);
+            break;
+        }
+    }
+
+    // Velocity row, and the velocity one step ahead: v(k+1) = cvA x(k) + cvB u(k).
+    std::vector<double> cv(size_t(nx), 0.0), cvA(size_t(nx), 0.0), cvB(size_t(nu), 0.0);
+    if (m.velocity >= 0) {
+        for (int j = 0; j < nx; ++j) {
+            cv[size_t(j)] = m.C(m.velocity, j);
+            for (int i = 0; i < nx; ++i) cvA[size_t(j)] += m.C(m.velocity, i) * m.A(i, j);
+        }
+        for (int l = 0; l < nu; ++l)
+            for (int i = 0; i < nx; ++i) cvB[size_t(l)] += m.C(m.velocity, i) * m.B(i, l);
+    }
+    const double bv = cvB[size_t(fi)];
+    const double eps = s.eps_velocity;
+    // Mode: eta'' + 2 zeta w eta' + w^2 eta = w^2 u, discretised with zero-order hold.
+    Eigen::Matrix2d Am = Eigen::Matrix2d::Identity();
+    Eigen::Vector2d Bm = Eigen::Vector2d::Zero();
+    if (mode) {
+        const double w = 2 * M_PI * std::max(f_hz, 1e-6);
+        Eigen::MatrixXd Ac(2, 2), Bc(2, 1), Ad, Bd;
+        Ac << 0, 1, -w * w, -2 * zeta * w;
+        Bc << 0, w * w;
+        zoh(Ac, Bc, Ts, Ad, Bd);
+        Am = Ad;
+        Bm = Bd.col(0);
+    }
+    // Grunwald-Letnikov weights of order alpha - 1 applied to v (= D^alpha of the position).
+    std::vector<double> glw;
+    double glscale = 0.0;
+    if (fractional) {
+        glw.resize(size_t(std::max(s.fractional_memory, 1)));
+        glw[0] = 1.0;
+        for (size_t j = 1; j < glw.size(); ++j) glw[j] = glw[j - 1] * (1.0 - alpha / double(j));
+        glscale = std::pow(Ts, 1.0 - alpha);
+    }
+
+    ReplayTrace tr;
+    tr.y.resize(N, ncmp);
+    tr.u.resize(N);
+    tr.v.resize(N);
+    std::vector<double> x(s.x0.data(), s.x0.data() + nx), xn(static_cast<size_t>(nx));
+    std::vector<double> xc(s.xc0.data(), s.xc0.data() + s.xc0.size()), xcn(xc.size());
+    const int ncs = int(xc.size());
+    std::vector<double> ytrue(static_cast<size_t>(ny)), ysens(static_cast<size_t>(ny)), u(static_cast<size_t>(nu)),
+        up(static_cast<size_t>(nu));
+    std::vector<double> w(m.closed_loop ? static_cast<size_t>(m.loop.Bc.cols()) : 0), cvec(static_cast<size_t>(nu));
+    double eta[2] = {0, 0};
+    double bl_out = 0.0;
+    History h_out, h_in, h_ctl;
+    std::vector<double> vel_hist;
+    int vel_head = 0;
+    if (fractional) vel_hist.assign(glw.size(), 0.0);
+    const int nr = m.closed_loop ? int(m.loop.references.size()) : 0;
+
+    auto plant_outputs = [&](bool with_d) {
+        for (int i = 0; i < ny; ++i) {
+            double acc = 0;
+            for (int j = 0; j < nx; ++j) acc += m.C(i, j) * x[size_t(j)];
+            if (with_d)
+                for (int j = 0; j < nu; ++j) acc += m.D(i, j) * up[size_t(j)];
+            ytrue[size_t(i)] = acc + mode_gain[size_t(i)] * eta[0];
+        }
+        if (h_out.len == 0) h_out.init(ny, dout + 1, ytrue.data());
+        h_out.push(ytrue.data());
+        const double* yd = dout > 0 ? h_out.lagged(dout + 1) : ytrue.data();
+        for (int i = 0; i < ny; ++i) {
+            double y = yd[i] + offset[size_t(i)];
+            if (step[size_t(i)] > 0) y = step[size_t(i)] * std::round(y / step[size_t(i)]);
+            ysens[size_t(i)] = y;
+        }
+    };
+    auto input_path = [&](double v) {
+        if (h_in.len == 0) h_in.init(nu, din + 1, u.data());
+        h_in.push(u.data());
+        const double* ud = din > 0 ? h_in.lagged(din + 1) : u.data();
+        for (int j = 0; j < nu; ++j) up[size_t(j)] = ud[j];
+        double a = gain * up[size_t(fi)];
+        a = std::min(std::max(a, -sat), sat);
+        if (dz > 0) a = std::fabs(a) <= dz ? 0.0 : a - std::copysign(dz, a);
+        if (bl >= 0) {
+            bl_out = std::min(std::max(bl_out, a - 0.5 * bl), a + 0.5 * bl);
+            a = bl_out;
+        }
+        up[size_t(fi)] = a;
+        double f = 0.0;
+        if (m.velocity >= 0) {
+            f = Foff + Fv * v;
+            if (fractional) {
+                vel_hist[size_t(vel_head)] = v;
+                double acc = 0;
+                const int L = int(vel_hist.size());
+                for (int j = 0; j < L; ++j) acc += glw[size_t(j)] * vel_hist[size_t(((vel_head - j) % L + L) % L)];
+                vel_head = (vel_head + 1) % L;
+                f += fc * acc / glscale;
+            }
+            // Dry friction of level L(v) (Coulomb, plus the Stribeck curve),
+            // discrete stick-slip: the force is the one that stops the
+            // velocity within this step, limited to +-L(v); so sliding gets
+            // L sign(v) exactly and sticking holds without chattering.
+            double level = Fc;
+            if (stribeck) level += Sc + (Ss - Sc) * std::exp(-(v / Svs) * (v / Svs));
+            if (level != 0.0) {
+                if (bv != 0.0) {
+                    double vfree = -bv * f;
+                    for (int j = 0; j < nx; ++j) vfree += cvA[size_t(j)] * x[size_t(j)];
+                    for (int l = 0; l < nu; ++l) vfree += cvB[size_t(l)] * up[size_t(l)];
+                    const double stop = vfree / bv, lv = std::fabs(level);
+                    f += std::min(std::max(stop, -lv), lv);
+                } else {
+                    f += level * tanh_sign(v, eps);
+                }
+            }
+        }
+        up[size_t(fi)] = a - f;
+    };
+
+    for (Eigen::Index k = 0; k < N; ++k) {
+        double v = 0;
+        for (int j = 0; j < nx; ++j) v += cv[size_t(j)] * x[size_t(j)];
+        if (m.closed_loop) {
+            plant_outputs(false);
+            for (int j = 0; j < nr; ++j) w[size_t(j)] = s.exo(k, j);
+            for (size_t j = 0; j < m.loop.measured.size(); ++j) w[size_t(nr) + j] = ysens[size_t(m.loop.measured[j])];
+            for (int i = 0; i < nu; ++i) {
+                double acc = 0;
+                for (int j = 0; j < ncs; ++j) acc += m.loop.Cc(i, j) * xc[size_t(j)];
+                for (size_t j = 0; j < w.size(); ++j) acc += m.loop.Dc(i, Eigen::Index(j)) * w[j];
+                cvec[size_t(i)] = acc;
+            }
+            for (int i = 0; i < ncs; ++i) {
+                double acc = 0;
+                for (int j = 0; j < ncs; ++j) acc += m.loop.Ac(i, j) * xc[size_t(j)];
+                for (size_t j = 0; j < w.size(); ++j) acc += m.loop.Bc(i, Eigen::Index(j)) * w[j];
+                xcn[size_t(i)] = acc;
+            }
+            xc.swap(xcn);
+            if (h_ctl.len == 0) h_ctl.init(nu, m.loop.delay_samples + 1, cvec.data());
+            h_ctl.push(cvec.data());
+            const double* cd = m.loop.delay_samples > 0 ? h_ctl.lagged(m.loop.delay_samples + 1) : cvec.data();
+            for (int i = 0; i < nu; ++i) {
+                u[size_t(i)] = std::min(std::max(cd[i], -m.loop.saturation), m.loop.saturation);
+                if (i < int(m.loop.additive.size())) u[size_t(i)] += s.exo(k, nr + i);
+            }
+            if (k == 0) bl_out = gain * u[size_t(fi)];
+            input_path(v);
+        } else {
+            for (int i = 0; i < nu; ++i) u[size_t(i)] = s.exo(k, i);
+            if (k == 0) bl_out = gain * u[size_t(fi)];
+            input_path(v);
+            plant_outputs(true);
+        }
+        for (int c = 0; c < ncmp; ++c) tr.y(k, c) = ysens[size_t(s.compared[size_t(c)])];
+        tr.u(k) = up[size_t(fi)];
+        tr.v(k) = v;
+        for (int i = 0; i < nx; ++i) {
+            double acc = 0;
+            for (int j = 0; j < nx; ++j) acc += m.A(i, j) * x[size_t(j)];
+            for (int j = 0; j < nu; ++j) acc += m.B(i, j) * up[size_t(j)];
+            xn[size_t(i)] = acc;
+        }
+        x.swap(xn);
+        if (mode) {
+            const double e0 = Am(0, 0) * eta[0] + Am(0, 1) * eta[1] + Bm(0) * up[size_t(fi)];
+            const double e1 = Am(1, 0) * eta[0] + Am(1, 1) * eta[1] + Bm(1) * up[size_t(fi)];
+            eta[0] = e0;
+            eta[1] = e1;
+        }
+    }
+    return tr;
+}
+
+}  // namespace gap
+}  // namespace fracdesign

@@ -1,0 +1,205 @@
+// nominal.cpp - reading and discretising the nominal model (see nominal.hpp).
+#include "fracdesign/gap/nominal.hpp"
+
+#include <cmath>
+#include <complex>
+#include <fstream>
+#include <stdexcept>
+#include <unsupported/Eigen/MatrixFunctions>
+
+namespace fracdesign {
+namespace gap {
+
+using nlohmann::json;
+
+int NominalModel::output_index(const std::string& n) const
+{
+    for (size_t i = 0; i < outputs.size(); ++i)
+        if (outputs[i] == n) return int(i);
+    return -1;
+}
+
+void zoh(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, double Ts, Eigen::MatrixXd& Ad, Eigen::MatrixXd& Bd)
+{
+    const Eigen::Index n = A.rows(), m = B.cols();
+    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n + m, n + m);
+    M.topLeftCorner(n, n) = A * Ts;
+    M.topRightCorner(n, m) = B * Ts;
+    const Eigen::MatrixXd E = M.exp();
+    Ad = E.topLeftCorner(n, n);
+    Bd = E.topRightCorner(n, m);
+}
+
+namespace {
+
+Eigen::MatrixXd matrix(const json& j, const std::string& key, Eigen::Index rows, Eigen::Index cols, bool required,
+                       const std::string& where)
+{
+    if (!j.contains(key)) {
+        if (required && rows > 0 && cols > 0) throw std::runtime_error(where + ": missing matrix '" + key + "'");
+        return Eigen::MatrixXd::Zero(rows, cols);
+    }
+    const json& a = j.at(key);
+    if (!a.is_array() || Eigen::Index(a.size()) != rows)
+        throw std::runtime_error(where + ": matrix '" + key + "' must have " + std::to_string(rows) + " rows");
+    Eigen::MatrixXd M(rows, cols);
+    for (Eigen::Index r = 0; r < rows; ++r) {
+        const json& row = a[size_t(r)];
+        if (!row.is_array() || Eigen::Index(row.size()) != cols)
+            throw std::runtime_error(where + ": matrix '" + key + "' row " + std::to_string(r) + " must have " +
+                                     std::to_string(cols) + " entries");
+        for (Eigen::Index c = 0; c < cols; ++c) {
+            if (!row[size_t(c)].is_number())
+                throw std::runtime_error(where + ": matrix '" + key + "' has a non-numeric entry");
+            M(r, c) = row[size_t(c)].get<double>();
+        }
+    }
+    if (!M.allFinite()) throw std::runtime_error(where + ": matrix '" + key + "' has a non-finite entry");
+    return M;
+}
+
+Eigen::Index rows_of(const json& j, const std::string& key)
+{
+    return j.contains(key) && j.at(key).is_array() ? Eigen::Index(j.at(key).size()) : 0;
+}
+
+std::vector<std::string> names(const json& j, const std::string& key, const std::string& where)
+{
+    if (!j.contains(key) || !j.at(key).is_array()) throw std::runtime_error(where + ": missing name list '" + key + "'");
+    std::vector<std::string> v;
+    for (const json& e : j.at(key)) {
+        if (!e.is_string()) throw std::runtime_error(where + ": '" + key + "' must list strings");
+        v.push_back(e.get<std::string>());
+    }
+    return v;
+}
+
+// Reads (A, B, C, D) with the given input/output counts and discretises at Ts.
+void read_ss(const json& j, Eigen::Index m, Eigen::Index p, double Ts, const std::string& where, Eigen::MatrixXd& A,
+             Eigen::MatrixXd& B, Eigen::MatrixXd& C, Eigen::MatrixXd& D)
+{
+    const Eigen::Index n = rows_of(j, "A");
+    A = matrix(j, "A", n, n, true, where);
+    B = matrix(j, "B", n, m, true, where);
+    C = matrix(j, "C", p, n, true, where);
+    D = matrix(j, "D", p, m, false, where);
+    const std::string domain = j.value("domain", "continuous");
+    if (domain == "continuous") {
+        Eigen::MatrixXd Ad, Bd;
+        zoh(A, B, Ts, Ad, Bd);
+        A = Ad;
+        B = Bd;
+    } else if (domain == "discrete") {
+        if (!j.contains("Ts") || !j.at("Ts").is_number())
+            throw std::runtime_error(where + ": a discrete model needs its sample time 'Ts'");
+        const double mTs = j.at("Ts").get<double>();
+        if (std::fabs(mTs - Ts) > 1e-3 * Ts)
+            throw std::runtime_error(where + ": model sample time " + std::to_string(mTs) +
+                                     " s does not match the data's " + std::to_string(Ts) + " s");
+    } else {
+        throw std::runtime_error(where + ": 'domain' must be \"continuous\" or \"discrete\"");
+    }
+}
+
+}  // namespace
+
+NominalModel nominal_from_json(const json& doc, double Ts)
+{
+    const std::string where = "model";
+    if (!doc.is_object() || doc.value("schema", "") != "frac.model")
+        throw std::runtime_error("model: not a \"frac.model\" document (schema field)");
+    if (doc.value("kind", "state_space") != "state_space")
+        throw std::runtime_error("model: only kind \"state_space\" can be replayed by the gap diagnosis");
+    NominalModel m;
+    m.name = doc.value("name", "nominal");
+    m.Ts = Ts;
+    m.inputs = names(doc, "inputs", where);
+    m.outputs = names(doc, "outputs", where);
+    if (m.inputs.empty() || m.outputs.empty()) throw std::runtime_error("model: needs at least one input and one output");
+    read_ss(doc, Eigen::Index(m.inputs.size()), Eigen::Index(m.outputs.size()), Ts, where, m.A, m.B, m.C, m.D);
+    if (m.A.rows() == 0) throw std::runtime_error("model: the plant has no states");
+    const json g = doc.value("gap", json::object());
+    if (g.contains("velocity")) {
+        m.velocity = m.output_index(g.at("velocity").get<std::string>());
+        if (m.velocity < 0) throw std::runtime_error("model: gap.velocity names no model output");
+    }
+    if (g.contains("force_input")) {
+        const std::string f = g.at("force_input").get<std::string>();
+        m.force_input = -1;
+        for (size_t i = 0; i < m.inputs.size(); ++i)
+            if (m.inputs[i] == f) m.force_input = int(i);
+        if (m.force_input < 0) throw std::runtime_error("model: gap.force_input names no model input");
+    }
+    if (g.contains("closed_loop")) {
+        const json& cl = g.at("closed_loop");
+        const std::string w = "model gap.closed_loop";
+        m.closed_loop = true;
+        m.loop.references = names(cl, "references", w);
+        for (const std::string& s : names(cl, "measured", w)) {
+            const int i = m.output_index(s);
+            if (i < 0) throw std::runtime_error(w + ": measured output '" + s + "' is not a model output");
+            m.loop.measured.push_back(i);
+        }
+        if (!cl.contains("controller")) throw std::runtime_error(w + ": missing 'controller'");
+        read_ss(cl.at("controller"), Eigen::Index(m.loop.references.size() + m.loop.measured.size()),
+                Eigen::Index(m.inputs.size()), Ts, w + ".controller", m.loop.Ac, m.loop.Bc, m.loop.Cc, m.loop.Dc);
+        m.loop.delay_samples = cl.value("delay_samples", 0);
+        if (m.loop.delay_samples < 0) throw std::runtime_error(w + ": delay_samples must be >= 0");
+        if (cl.contains("saturation")) m.loop.saturation = cl.at("saturation").get<double>();
+        if (!(m.loop.saturation > 0)) throw std::runtime_error(w + ": saturation must be > 0");
+        if (cl.contains("additive")) m.loop.additive = names(cl, "additive", w);
+        if (m.D.cwiseAbs().maxCoeff() != 0.0)
+            throw std::runtime_error(w + ": the plant must be strictly proper (D = 0) in a closed loop");
+    }
+    return m;
+}
+
+NominalModel load_nominal_model(const std::string& path, double Ts)
+{
+    std::ifstream in(path);
+    if (!in) throw std::runtime_error(path + ": cannot open model file");
+    json doc;
+    try {
+        in >> doc;
+    } catch (const std::exception& e) {
+        throw std::runtime_error(path + ": not valid JSON (" + e.what() + ")");
+    }
+    try {
+        return nominal_from_json(doc, Ts);
+    } catch (const nlohmann::json::exception& e) {
+        throw std::runtime_error(path + ": malformed model (" + e.what() + ")");
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(path + ": " + e.what());
+    }
+}
+
+std::vector<Mode> NominalModel::modes() const
+{
+    Eigen::MatrixXd Acl = A;
+    if (closed_loop) {
+        // x+ = A x + B (Cc xc + Dc [r; Cm x]),  xc+ = Ac xc + Bc [r; Cm x]  (r = 0)
+        const Eigen::Index n = A.rows(), nc = loop.Ac.rows();
+        Eigen::MatrixXd Cm(loop.measured.size(), n);
+        for (size_t i = 0; i < loop.measured.size(); ++i) Cm.row(Eigen::Index(i)) = C.row(loop.measured[i]);
+        const Eigen::MatrixXd Dm = loop.Dc.rightCols(Cm.rows()), Bm = loop.Bc.rightCols(Cm.rows());
+        Acl.resize(n + nc, n + nc);
+        Acl.topLeftCorner(n, n) = A + B * Dm * Cm;
+        Acl.topRightCorner(n, nc) = B * loop.Cc;
+        Acl.bottomLeftCorner(nc, n) = Bm * Cm;
+        Acl.bottomRightCorner(nc, nc) = loop.Ac;
+    }
+    Eigen::EigenSolver<Eigen::MatrixXd> es(Acl, false);
+    std::vector<Mode> out;
+    for (Eigen::Index i = 0; i < es.eigenvalues().size(); ++i) {
+        const std::complex<double> z = es.eigenvalues()[i];
+        if (z.imag() < 0 || std::abs(z) < 1e-12) continue;  // one of each conjugate pair; skip pure delays
+        const std::complex<double> s = std::log(z) / Ts;
+        const double wn = std::abs(s);
+        if (wn < 1e-9) continue;  // integrators
+        out.push_back({wn / (2 * M_PI), -s.real() / wn});
+    }
+    return out;
+}
+
+}  // namespace gap
+}  // namespace fracdesign

@@ -1,0 +1,179 @@
+// gap_report.cpp - HTML report of the gap diagnosis (see gap_report.hpp).
+#include "fracdesign/report/gap_report.hpp"
+
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <sstream>
+#include <unsupported/Eigen/FFT>
+
+#include "fracdesign/report/svg.hpp"
+
+namespace fracdesign {
+namespace report {
+
+namespace {
+
+std::string g4(double v)
+{
+    if (!std::isfinite(v)) return "n/a";
+    char b[32];
+    std::snprintf(b, sizeof b, "%.4g", v);
+    return b;
+}
+
+std::vector<double> vec(const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
+
+// One-sided periodogram of x (mean removed), averaged over 8 segments.
+void residual_psd(const Eigen::VectorXd& x, double Ts, std::vector<double>& f, std::vector<double>& p)
+{
+    Eigen::Index seg = 16;  // power of two (fast FFT), about an eighth of the record
+    while (seg * 16 <= x.size()) seg *= 2;
+    Eigen::FFT<double> fft;
+    f.clear();
+    p.assign(size_t(seg / 2), 0.0);
+    int n = 0;
+    for (Eigen::Index s = 0; s + seg <= x.size(); s += seg) {
+        Eigen::VectorXd y = x.segment(s, seg);
+        y.array() -= y.mean();
+        std::vector<double> in(y.data(), y.data() + seg);
+        std::vector<std::complex<double>> X;
+        fft.fwd(X, in);
+        for (size_t k = 1; k < p.size(); ++k) p[k] += std::norm(X[k]) * Ts / double(seg);
+        ++n;
+    }
+    for (size_t k = 0; k < p.size(); ++k) {
+        f.push_back(double(k) / (double(seg) * Ts));
+        p[k] /= std::max(n, 1);
+    }
+    f.erase(f.begin());
+    p.erase(p.begin());
+}
+
+}  // namespace
+
+std::string gap_report_html(const gap::GapResult& r, const nlohmann::json& j, const std::string& command)
+{
+    std::ostringstream o;
+    o << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>gap diagnosis: " << html_escape(r.model_name)
+      << "</title>\n<style>body{font-family:sans-serif;max-width:960px;margin:auto;padding:1em}"
+         "table{border-collapse:collapse;font-size:12px}td,th{border:1px solid #ccc;padding:2px 6px;text-align:right}"
+         "th{background:#f0f0f0}td.l{text-align:left}code{background:#f6f6f6}</style></head><body>\n";
+    o << "<h1>Sim-to-real gap diagnosis</h1>\n";
+    o << "<p>Model <b>" << html_escape(r.model_name) << "</b>; fitted on <code>" << html_escape(r.data_source)
+      << "</code> (" << r.fit_samples << " samples); held out: <code>" << html_escape(r.eval_source) << "</code> ("
+      << r.eval_samples << " samples); Ts = " << g4(r.Ts) << " s. Command: <code>" << html_escape(command) << "</code></p>\n";
+    std::string verdict;
+    for (const auto& e : j["verdict"]["effects"]) verdict += (verdict.empty() ? "" : " + ") + e.get<std::string>();
+    o << "<h2>Verdict: " << html_escape(verdict) << "</h2>\n<p>Held-out gap (sqrt of the mean nrmse&sup2; over outputs) "
+      << g4(r.gap_before_total) << " &rarr; " << g4(r.verdict.gap) << ", shrink " << g4(100 * r.verdict.shrink)
+      << " %.</p>\n";
+    o << "<table><tr><th>output</th><th>nrmse before</th><th>nrmse after</th></tr>\n";
+    for (size_t c = 0; c < r.outputs.size(); ++c)
+        o << "<tr><td class=l>" << html_escape(r.outputs[c]) << "</td><td>" << g4(r.gap_before[c]) << "</td><td>"
+          << g4(c < r.verdict.gap_after.size() ? r.verdict.gap_after[c] : NAN) << "</td></tr>\n";
+    o << "</table>\n<p>Verdict parameters (&plusmn; 1 std from the Gauss-Newton covariance):</p><table><tr><th>parameter</th><th>value</th><th>std</th></tr>\n";
+    for (auto it = j["verdict"]["params"].begin(); it != j["verdict"]["params"].end(); ++it)
+        o << "<tr><td class=l>" << html_escape(it.key()) << "</td><td>" << (it.value().is_null() ? "n/a" : g4(it.value().get<double>()))
+          << "</td><td>" << (j["verdict"]["params_std"][it.key()].is_null() ? "n/a" : g4(j["verdict"]["params_std"][it.key()].get<double>()))
+          << "</td></tr>\n";
+    o << "</table>\n";
+
+    // Measured vs nominal vs augmented, held-out part.
+    o << "<h2>Measured vs nominal vs augmented (held-out data)</h2>\n";
+    const Eigen::Index a = r.eval_first, n = r.eval_samples;
+    for (size_t c = 0; c < r.outputs.size(); ++c) {
+        const std::vector<double> t = vec(r.t.segment(a, n));
+        std::vector<Series> s = {{"measured", "#222", t, vec(r.measured.col(Eigen::Index(c)).segment(a, n))},
+                                 {"nominal", "#1f77b4", t, vec(r.nominal.col(Eigen::Index(c)).segment(a, n))},
+                                 {"augmented", "#d62728", t, vec(r.augmented.col(Eigen::Index(c)).segment(a, n))}};
+        o << line_chart(r.outputs[c], "t [s]", r.outputs[c], s);
+        std::vector<Series> e = {
+            {"nominal error", "#1f77b4", t, vec(r.measured.col(Eigen::Index(c)).segment(a, n) - r.nominal.col(Eigen::Index(c)).segment(a, n))},
+            {"augmented error", "#d62728", t, vec(r.measured.col(Eigen::Index(c)).segment(a, n) - r.augmented.col(Eigen::Index(c)).segment(a, n))}};
+        o << line_chart(r.outputs[c] + ": output error", "t [s]", "measured - model", e);
+    }
+
+    // Residual spectra per band.
+    o << "<h2>Residual by frequency band (held-out data)</h2>\n";
+    std::vector<std::string> cats;
+    for (const auto& b : r.bands) cats.push_back(g4(b[0]) + "-" + g4(b[1]) + " Hz");
+    std::vector<std::string> labels;
+    std::vector<std::vector<double>> vals;
+    for (size_t c = 0; c < r.outputs.size(); ++c) {
+        std::vector<double> before, after;
+        for (size_t b = 0; b < r.band_nrmse_before.size(); ++b) {
+            before.push_back(r.band_nrmse_before[b][c]);
+            after.push_back(b < r.verdict.band_nrmse.size() ? r.verdict.band_nrmse[b][c] : NAN);
+        }
+        labels.push_back(r.outputs[c] + " nominal");
+        vals.push_back(before);
+        labels.push_back(r.outputs[c] + " augmented");
+        vals.push_back(after);
+    }
+    o << bar_chart("band nrmse, nominal vs augmented", cats, labels, vals, {"#1f77b4", "#d62728", "#6baed6", "#ff9896", "#9ecae1", "#ffbb78"});
+    {
+        std::vector<double> share;
+        for (const auto& b : r.bands) share.push_back(b[2]);
+        o << bar_chart("share of the nominal residual energy per band (fit record)", cats, {"share"}, {share}, {"#555"});
+    }
+    for (size_t c = 0; c < r.outputs.size(); ++c) {
+        std::vector<double> f0, p0, f1, p1;
+        residual_psd(r.measured.col(Eigen::Index(c)).segment(a, n) - r.nominal.col(Eigen::Index(c)).segment(a, n), r.Ts, f0, p0);
+        residual_psd(r.measured.col(Eigen::Index(c)).segment(a, n) - r.augmented.col(Eigen::Index(c)).segment(a, n), r.Ts, f1, p1);
+        o << line_chart(r.outputs[c] + ": residual spectrum", "f [Hz]", "PSD",
+                        {{"nominal", "#1f77b4", f0, p0}, {"augmented", "#d62728", f1, p1}}, {}, true, true);
+    }
+    if (!r.modes.empty()) {
+        o << "<h3>Nominal modes against the measured spectrum</h3><table><tr><th>f [Hz]</th><th>&zeta;</th><th>residual share</th>"
+             "<th>measured peak [Hz]</th><th>model peak [Hz]</th><th>peak ratio</th><th>flag</th></tr>\n";
+        for (const auto& m : r.modes)
+            o << "<tr><td>" << g4(m.f_hz) << "</td><td>" << g4(m.zeta) << "</td><td>" << g4(m.residual_share) << "</td><td>"
+              << g4(m.measured_peak_hz) << "</td><td>" << g4(m.model_peak_hz) << "</td><td>" << g4(m.peak_ratio)
+              << "</td><td class=l>" << m.flag << "</td></tr>\n";
+        o << "</table>\n";
+    }
+
+    // Residual vs time with the flagged windows.
+    o << "<h2>Nominal residual vs time (fit record) and flagged windows</h2>\n";
+    std::vector<Shade> sh;
+    for (const auto& w : r.windows) sh.push_back({w.t0, w.t1, w.condition});
+    std::vector<Series> rs;
+    const char* colors[] = {"#1f77b4", "#2ca02c", "#9467bd", "#8c564b"};
+    for (size_t c = 0; c < r.outputs.size(); ++c)
+        rs.push_back({r.outputs[c] + " / std", colors[c % 4], vec(r.where_t), vec(r.where_residual.col(Eigen::Index(c)))});
+    o << line_chart("normalized nominal residual", "t [s]", "residual / std(output)", rs, sh);
+    o << "<table><tr><th>t0 [s]</th><th>t1 [s]</th><th>rms</th><th>condition</th></tr>\n";
+    for (const auto& w : r.windows)
+        o << "<tr><td>" << g4(w.t0) << "</td><td>" << g4(w.t1) << "</td><td>" << g4(w.rms) << "</td><td class=l>"
+          << html_escape(w.condition) << "</td></tr>\n";
+    o << "</table>\n";
+
+    // Candidates.
+    o << "<h2>Candidates (best first)</h2>\n<p>score = shrink &minus; 0.01 &times; fitted parameters; shrink = 1 &minus; gap_after/gap_before on held-out data.</p>\n"
+         "<table><tr><th>effect</th><th>shrink</th><th>score</th><th>gap after</th><th class=l>parameters</th></tr>\n";
+    for (const auto& c : j["candidates"]) {
+        std::string ps;
+        for (auto it = c["params"].begin(); it != c["params"].end(); ++it) {
+            const auto& sd = c["params_std"][it.key()];
+            ps += it.key() + " = " + (it.value().is_null() ? "n/a" : g4(it.value().get<double>())) +
+                  (sd.is_null() ? "" : " &plusmn; " + g4(sd.get<double>())) + "; ";
+        }
+        o << "<tr><td class=l>" << html_escape(c["effect"].get<std::string>()) << "</td><td>"
+          << g4(c["shrink"].is_null() ? NAN : c["shrink"].get<double>()) << "</td><td>"
+          << g4(c["score"].is_null() ? NAN : c["score"].get<double>()) << "</td><td>"
+          << g4(c["gap_after_total"].is_null() ? NAN : c["gap_after_total"].get<double>()) << "</td><td class=l>" << ps
+          << "</td></tr>\n";
+    }
+    o << "</table>\n";
+    if (!r.skipped.empty()) {
+        o << "<p>Not tried:</p><ul>";
+        for (const auto& s : r.skipped) o << "<li>" << html_escape(s) << "</li>";
+        o << "</ul>\n";
+    }
+    o << "<p style=\"color:#777\">fracdesign gap, " << g4(r.seconds) << " s.</p></body></html>\n";
+    return o.str();
+}
+
+}  // namespace report
+}  // namespace fracdesign
