@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# DARE at the Exp. D size (24 states) and the unreduced size (48): fracdesign's
-# structured doubling vs scipy.linalg.solve_discrete_are, same matrices, same run.
+# DARE at the Exp. D size (24 states) and the unreduced size (48): the Kalman-filter
+# Riccati equation of the seed 004 Exp. D design (reduced and unreduced arm);
+# fracdesign's structured doubling vs scipy.linalg.solve_discrete_are, same matrices, same run.
 # Residuals of both solutions are computed by the same numpy formula.
 set -euo pipefail
 tmp=$(mktemp -d /tmp/bench_dare.XXXXXX)
