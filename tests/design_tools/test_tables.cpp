@@ -237,3 +237,31 @@ TEST(Tables, CliEmitsEveryFormatAndRefusesACorruptTable)
     run(exe + " table emit --in " + dir + "/t.json --format yaml --out " + dir + "/t.y", &st);
     EXPECT_EQ(st, 2);
 }
+
+TEST(Tables, DesignDocumentsMapToTheirEntries)
+{
+    const nlohmann::json fopi = {{"schema", "frac.design.fopi"},
+                                 {"source", "seed 001"},
+                                 {"controller", {{"Kp", 0.1218565}, {"Ki", 0.1255097}, {"alpha", 0.88}}}};
+    const ParamTable t = table_from_document(fopi);
+    EXPECT_EQ(t.name, "fopi");
+    EXPECT_EQ(t.at("Ki").values[0], 0.1255097);
+    const nlohmann::json lqg = {{"schema", "frac.design.lqg"}, {"T", 1.2e-3}, {"di", 4}, {"do", 3},
+                                {"K", {{1.0, 2.0}}},          {"Le", {{1.0}, {2.0}, {3.0}}},
+                                {"Ae", {{1.0, 0.0}, {0.0, 1.0}}}, {"Be", {{0.0}, {1.0}}},
+                                {"Ce", {{1.0, 0.0}}}};
+    const ParamTable l = table_from_document(lqg);
+    EXPECT_EQ(l.at("Le").rows, 3);
+    EXPECT_EQ(l.at("K").cols, 2);
+    EXPECT_EQ(l.at("d_o").values[0], 3.0);
+    nlohmann::json bad = lqg;
+    bad["Ae"][1] = {1.0};
+    try {
+        table_from_document(bad);
+        FAIL();
+    } catch (const TableError& e) {
+        EXPECT_EQ(e.field, "Ae[1]");
+    }
+    EXPECT_THROW(table_from_document({{"schema", "frac.design.unknown"}}), TableError);
+    EXPECT_THROW(table_from_document({{"schema", "frac.design.fopi"}, {"controller", {{"Kp", 1.0}}}}), TableError);
+}

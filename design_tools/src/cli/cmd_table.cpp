@@ -128,7 +128,7 @@ CommandRegistrar reg({"table", "emit and check the parameter tables the PLC load
                       "                             [--real float64|float32] [--name NAME] [--json]\n"
                       "       fracdesign table check FILE.bin [--json]\n\n"
                       "emit: DOC is a parameter table (schema frac.ptable v1) or a design document\n"
-                      "(frac.design.fopi, frac.design.fopd); writes it as JSON, a C header of const\n"
+                      "(frac.design.fopi, fopd, collocated, lqg); writes it as JSON, a C header of const\n"
                       "arrays (plus the binary object as bytes), a B&R .var file of IEC 61131-3\n"
                       "initializers, or the binary data object FRPT (docs/param_table_format.md).\n"
                       "check: validates a binary table with libfrac's frac_ptable_open (the PLC's\n"

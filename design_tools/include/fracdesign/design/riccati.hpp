@@ -9,7 +9,9 @@
 //
 // Methods (no code taken from elsewhere, algorithms from the literature):
 //  - DARE: structured doubling algorithm (Chu, Fan & Lin 2005) on the symplectic
-//    pencil with G = B R^-1 B', H = Q - S R^-1 S', A <- A - B R^-1 S'; quadratic convergence.
+//    pencil with G = B R^-1 B', H = Q - S R^-1 S', A <- A - B R^-1 S'; quadratic convergence;
+//    then up to two Newton steps (Hewer 1971) whose Stein equations are solved by Smith's
+//    doubling, kept while the residual drops (restores accuracy on badly scaled problems).
 //  - CARE: Newton-scaled matrix sign function of the Hamiltonian (Roberts 1971,
 //    Byers 1987), then X from the stable invariant subspace by least squares.
 // A failure is diagnosed by PBH tests on the modes of A and thrown as RiccatiError
