@@ -27,7 +27,9 @@ namespace ident {
 //   w_0 = 1, w_j = w_{j-1} (1 - (lambda + 1)/j)     (Podlubny 1999, eq. 7.25)
 // u(t - tau) by linear interpolation between samples, u = 0 for t < 0.
 // O(n^2) time, full memory (no short-memory truncation). Templated for
-// ceres::Jet: th = [K, T, lambda, tau].
+// ceres::Jet: th = [K, T, lambda, tau]. It is the scheme libfrac's
+// frac_foprocess runs with the GL operator at full memory (what the PLC and
+// the HIL rig run); test_ident_fo_matches_libfrac holds the two equal.
 inline double scalar_part(double x) { return x; }
 template <class J>
 double scalar_part(const J& x)  // ceres::Jet: the value part
