@@ -18,7 +18,7 @@ namespace fracdesign {
 namespace {
 
 // Inversion-based feedforward: stable inversion of the arm (ibffc.hpp) for q'(t) as the tip velocity.
-int run_ibffc(const Args& args, const design::SinSquaredPtp& p, double dt, long di)
+int run_ibffc(const Args& args, const design::SinSquaredPtp& p, double dt, long di, long dout)
 {
     TimoshenkoParams beam = wang_steel_beam();
     // The thesis gives no beam damping (notes 004b 1.2); default r_t = 0.5 N s/m^2, r_r = 0.
@@ -37,11 +37,11 @@ int run_ibffc(const Args& args, const design::SinSquaredPtp& p, double dt, long 
         std::ofstream f(args.str("out"));
         if (!f) throw std::runtime_error("cannot write '" + args.str("out") + "'");
         f.precision(12);
-        f << "t,psi_dot_L_des,tau_M,theta_M,theta_M_dot,tau_M_sent,psi_dot_L_model\n";
+        f << "t,psi_dot_L_des,tau_M,theta_M,theta_M_dot,tau_M_sent,psi_dot_L_imu_ref,psi_dot_L_model\n";
         const long n = static_cast<long>(r.t.size());
         for (long k = 0; k < n; ++k)
             f << r.t[k] << "," << r.y_des[k] << "," << r.u[k] << "," << r.theta_M[k] << "," << r.theta_M_dot[k] << ","
-              << r.u[std::min(k + di, n - 1)] << "," << r.y_sim[k] << "\n";
+              << r.u[std::min(k + di, n - 1)] << "," << r.y_des[std::max(k - dout, 0L)] << "," << r.y_sim[k] << "\n";
     }
     double tau_max = 0.0;
     for (double u : r.u) tau_max = std::max(tau_max, std::fabs(u));
@@ -65,15 +65,15 @@ int run_ibffc(const Args& args, const design::SinSquaredPtp& p, double dt, long 
 int run_traj(const std::vector<std::string>& argv)
 {
     Args args(argv, {"json", "ibffc"});
-    args.check_known({"json", "qs", "qe", "qd-max", "qdd-max", "ts", "te", "dt", "t-end", "Il", "di", "out", "ibffc",
+    args.check_known({"json", "qs", "qe", "qd-max", "qdd-max", "ts", "te", "dt", "t-end", "Il", "di", "do", "out", "ibffc",
                       "rt", "rr", "pre"});
     constexpr double kPi = 3.14159265358979323846;
     // Defaults: Table 8.5 (q_s = 0, q_e = pi/2, qd_m = pi/2, qdd_m = 2 pi, t_s = 0.5 s, t_e = 2 s).
     design::PtpSpec s{args.num("qs", 0.0), args.num("qe", kPi / 2), args.num("qd-max", kPi / 2),
                       args.num("qdd-max", 2 * kPi), args.num("ts", 0.5), args.num("te", 2.0)};
     const double dt = args.num("dt", 1.2e-3);
-    const long di = args.integer("di", 0);
-    if (!(dt > 0.0) || di < 0) throw UsageError("need --dt > 0 and --di >= 0");
+    const long di = args.integer("di", 0), dout = args.integer("do", 0);
+    if (!(dt > 0.0) || di < 0 || dout < 0) throw UsageError("need --dt > 0 and --di, --do >= 0");
     std::unique_ptr<design::SinSquaredPtp> p;
     try {
         p = std::make_unique<design::SinSquaredPtp>(s);
@@ -96,19 +96,20 @@ int run_traj(const std::vector<std::string>& argv)
         q[k] = p->eval(k * dt);
         ff[k] = design::rigid_body_feedforward(q[k], dr.I_M, Il, dr.c_s);
     }
-    if (args.has("ibffc")) return run_ibffc(args, *p, dt, di);
+    if (args.has("ibffc")) return run_ibffc(args, *p, dt, di, dout);
     if (args.has("out")) {
         std::ofstream f(args.str("out"));
         if (!f) throw std::runtime_error("cannot write '" + args.str("out") + "'");
         f.precision(12);
         // tau_M_bar*[k] = tau_M*[k + d_i]: the torque is sent d_i samples early (Sec. 8.6).
-        f << "t,q,qd,qdd,q3,q4,theta_M,theta_M_dot,theta_M_ddot,tau_M,tau_M_sent\n";
+        // qd_imu_ref[k] = qd[k - d_o]: the IMU reference is delayed like the measurement (Sec. 8.6).
+        f << "t,q,qd,qdd,q3,q4,theta_M,theta_M_dot,theta_M_ddot,tau_M,tau_M_sent,qd_imu_ref\n";
         for (long k = 0; k < n; ++k) {
             const long ks = std::min(k + di, n - 1);
             f << k * dt;
             for (double v : q[k]) f << "," << v;
             for (double v : ff[k]) f << "," << v;
-            f << "," << ff[ks][3] << "\n";
+            f << "," << ff[ks][3] << "," << q[std::max(k - dout, 0L)][1] << "\n";
         }
     }
     double tau_max = 0.0;
@@ -133,14 +134,15 @@ int run_traj(const std::vector<std::string>& argv)
 
 CommandRegistrar reg({"traj", "sin^2 point-to-point trajectory and rigid-body feedforward (seed 004)",
                       "usage: fracdesign traj [--qs Q] [--qe Q] [--qd-max V] [--qdd-max A] [--ts T] [--te T]\n"
-                      "                       [--dt DT] [--t-end T] [--Il I] [--di N] [--out FILE.csv] [--json]\n"
+                      "                       [--dt DT] [--t-end T] [--Il I] [--di N] [--do N] [--out FILE.csv] [--json]\n"
                       "                       [--ibffc [--rt R] [--rr R] [--pre S]]\n\n"
                       "Plans the sin^2 PTP of seed 004 (4.1)-(4.7) (corrected: qdd_m in (4.5), braking\n"
                       "sin^2(pi (t - t_b)/t_a) in (4.7)); defaults are Table 8.5. --te 0 moves as fast as\n"
                       "qd_max and qdd_max allow; an end time shorter than that is refused (exit 1). Samples\n"
                       "q..q^(4) and the rigid-body feedforward theta_M*, theta_M*', theta_M*'', tau_M*\n"
                       "(4.14)-(4.17) every DT up to --t-end; --di N adds tau_M_sent[k] = tau_M*[k + N]\n"
-                      "(torque sent N samples early for the input delay, Sec. 8.6).\n"
+                      "(torque sent N samples early for the input delay, Sec. 8.6) and --do N the IMU\n"
+                      "reference qd_imu_ref[k] = qd*[k - N] (compared with the delayed measurement).\n"
                       "--ibffc: inversion-based feedforward instead: stable inversion of the ZOH arm\n"
                       "(tau_M -> psi'(L), 16 states) for psi'(L)* = q'(t), modes |lambda| <= 1 forward and\n"
                       "|lambda| > 1 backward in time over [-PRE, t-end] (--pre, default 2 s): CSV columns\n"
