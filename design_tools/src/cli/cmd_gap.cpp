@@ -134,7 +134,7 @@ CommandRegistrar reg({"gap", "diagnose the sim-to-real gap: where, which unmodel
                       "gap.closed_loop section gives the controller) on the recorded data, locates the\n"
                       "residual (output, frequency band, nominal modes, time windows with the\n"
                       "operating condition), fits every candidate effect with Ceres on the fit part\n"
-                      "and ranks them by the held-out gap they remove (score = shrink - 0.01 per\n"
+                      "and ranks them by the held-out gap they remove (score = shrink - 0.005 per\n"
                       "fitted parameter), then adds effects by forward selection while the held-out\n"
                       "gap falls by >= 5 %. Without --validate the last --holdout fraction (30 %) of\n"
                       "the record is held out and never fitted.\n\n"

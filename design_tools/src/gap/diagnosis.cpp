@@ -28,14 +28,15 @@ const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double rms(const Eigen::VectorXd& v) { return v.size() ? std::sqrt(v.squaredNorm() / double(v.size())) : 0.0; }
 
-// nrmse = ||y - yhat|| / ||y - mean(y)|| per column.
-std::vector<double> nrmse(const Eigen::MatrixXd& y, const Eigen::MatrixXd& yhat)
+// nrmse per column: rms(y - yhat) / scale, scale = std of the output over the
+// whole record the rows come from (a held-out tail that sits in steady state
+// would make its own std a meaningless yardstick).
+std::vector<double> nrmse(const Eigen::MatrixXd& y, const Eigen::MatrixXd& yhat, const std::vector<double>& scale)
 {
     std::vector<double> out;
     for (Eigen::Index c = 0; c < y.cols(); ++c) {
-        const Eigen::VectorXd d = y.col(c).array() - y.col(c).mean();
-        const double den = d.norm();
-        out.push_back(den > 0 ? (y.col(c) - yhat.col(c)).norm() / den : kNaN);
+        const double e = std::sqrt((y.col(c) - yhat.col(c)).squaredNorm() / double(y.rows()));
+        out.push_back(scale[size_t(c)] > 0 ? e / scale[size_t(c)] : kNaN);
     }
     return out;
 }
@@ -87,15 +88,17 @@ Eigen::MatrixXd band_energy(const Eigen::MatrixXd& x, double Ts, const std::vect
     return E;
 }
 
-// Per band, per output: sqrt(band residual energy / energy of y about its mean).
-std::vector<std::vector<double>> band_nrmse(const Eigen::MatrixXd& y, const Eigen::MatrixXd& yhat, double Ts)
+// Per band, per output: sqrt(band residual energy / n) / scale, so that the
+// squares over the bands add up to nrmse^2.
+std::vector<std::vector<double>> band_nrmse(const Eigen::MatrixXd& y, const Eigen::MatrixXd& yhat, double Ts,
+                                            const std::vector<double>& scale)
 {
     const auto bands = band_edges(Ts);
     const Eigen::MatrixXd E = band_energy(y - yhat, Ts, bands);
     std::vector<std::vector<double>> out(bands.size());
     for (size_t b = 0; b < bands.size(); ++b)
         for (Eigen::Index c = 0; c < y.cols(); ++c) {
-            const double den = (y.col(c).array() - y.col(c).mean()).matrix().squaredNorm();
+            const double den = double(y.rows()) * scale[size_t(c)] * scale[size_t(c)];
             out[b].push_back(den > 0 ? std::sqrt(E(Eigen::Index(b), c) / den) : kNaN);
         }
     return out;
@@ -384,6 +387,7 @@ struct Evaluator {
     Eigen::Index first, n;
     double gap_before;
     double Ts;
+    std::vector<double> scale;  // std of each output over the whole evaluated record
 
     Eigen::MatrixXd simulate(const std::vector<EffectInstance>& eff) const
     {
@@ -407,13 +411,13 @@ FitReport make_report(const FitProblem& P, const FitOutcome& o, const Evaluator&
         r.stddev.push_back(sd);
     }
     const Eigen::MatrixXd yhat = E.simulate(r.effects);
-    r.gap_after = nrmse(E.y_eval, yhat);
+    r.gap_after = nrmse(E.y_eval, yhat, E.scale);
     r.gap = total_gap(r.gap_after);
     if (!std::isfinite(r.gap)) r.gap = std::numeric_limits<double>::infinity();
     r.shrink = E.gap_before > 0 ? 1.0 - r.gap / E.gap_before : 0.0;
     r.score = r.shrink - penalty * r.fitted_params;
     r.solver = o.brief;
-    r.band_nrmse = band_nrmse(E.y_eval, yhat, E.Ts);
+    r.band_nrmse = band_nrmse(E.y_eval, yhat, E.Ts, E.scale);
     return r;
 }
 
@@ -556,12 +560,16 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
         }
     }
 
-    Evaluator E{&eval_setup, yeval, R.eval_first, R.eval_samples, 0.0, data.Ts};
+    Evaluator E{&eval_setup, yeval, R.eval_first, R.eval_samples, 0.0, data.Ts, {}};
+    for (size_t c = 0; c < outs.size(); ++c) {
+        const Eigen::VectorXd yc = evsig.col(outs[c]);
+        E.scale.push_back(std::sqrt((yc.array() - yc.mean()).square().mean()));
+    }
     const Eigen::MatrixXd yhat_nom = E.simulate({});
-    R.gap_before = nrmse(yeval, yhat_nom);
+    R.gap_before = nrmse(yeval, yhat_nom, E.scale);
     R.gap_before_total = total_gap(R.gap_before);
     E.gap_before = R.gap_before_total;
-    R.band_nrmse_before = band_nrmse(yeval, yhat_nom, data.Ts);
+    R.band_nrmse_before = band_nrmse(yeval, yhat_nom, data.Ts, E.scale);
 
     // Where: bands of the nominal residual (whole record, normalized outputs).
     const auto bands = band_edges(data.Ts);
@@ -639,6 +647,24 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
               [](const std::pair<FitReport, EffectSetup>& a, const std::pair<FitReport, EffectSetup>& b) {
                   return a.first.score > b.first.score;
               });
+    // Nested effects: stribeck_friction contains coulomb_friction (Fs = Fc);
+    // it ranks above it only when it lowers the held-out gap by the margin.
+    auto nested_rule = [&](auto& list, auto report_of) {
+        int ic = -1, is = -1;
+        for (size_t i = 0; i < list.size(); ++i) {
+            const FitReport& f = report_of(list[i]);
+            if (f.effects.size() != 1) continue;
+            if (f.effects[0].kind == Effect::coulomb_friction) ic = int(i);
+            if (f.effects[0].kind == Effect::stribeck_friction) is = int(i);
+        }
+        if (ic > is && is >= 0 && report_of(list[size_t(is)]).gap > (1.0 - opt.margin) * report_of(list[size_t(ic)]).gap) {
+            auto moved = list[size_t(ic)];
+            list.erase(list.begin() + ic);
+            list.insert(list.begin() + is, moved);
+        }
+    };
+    nested_rule(R.candidates, [](const FitReport& f) -> const FitReport& { return f; });
+    nested_rule(singles, [](const std::pair<FitReport, EffectSetup>& p) -> const FitReport& { return p.first; });
 
     // Forward selection: add the best, refit all jointly, repeat while the
     // held-out gap shrinks by at least `margin` (relative) and the penalized score grows.
@@ -766,9 +792,11 @@ nlohmann::json result_json(const GapResult& R)
         bb.push_back({{"band_hz", {bands[b].first, bands[b].second}}, {"nrmse", per_output(R.outputs, R.band_nrmse_before[b])}});
     j["gap_before_total"] = num(R.gap_before_total);
     j["gap_before_bands"] = bb;
-    j["criterion"] = {{"gap", "sqrt(mean over outputs of nrmse^2) on held-out data"},
+    j["criterion"] = {{"nrmse", "rms(measured - model) on held-out data / std(measured output over its whole record)"},
+                      {"gap", "sqrt(mean over outputs of nrmse^2) on held-out data"},
                       {"shrink", "1 - gap_after/gap_before"},
-                      {"score", "shrink - 0.01 * fitted parameters"},
+                      {"score", "shrink - 0.005 * fitted parameters"},
+                      {"nesting", "stribeck_friction ranks above coulomb_friction only if its gap is >= 5 % (relative) lower"},
                       {"forward_selection", "add the best-scoring effect, refit jointly, keep it while the gap falls by >= 5 % (relative) and the score rises"}};
     j["data"] = {{"model", R.model_name}, {"fit", R.data_source}, {"held_out", R.eval_source},
                  {"fit_samples", R.fit_samples}, {"held_out_samples", R.eval_samples}, {"Ts", R.Ts}};

@@ -186,7 +186,10 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
         case Effect::output_delay: dout = std::max(0, int(std::lround(p[0] / Ts))); break;
         case Effect::coulomb_friction: Fc = p[0]; Foff = p[1]; break;
         case Effect::viscous_friction: Fv = p[0]; break;
-        case Effect::stribeck_friction: stribeck = true; Sc = p[0]; Ss = p[1]; Svs = std::max(std::fabs(p[2]), 1e-12); break;
+        case Effect::stribeck_friction:
+            // The Stribeck curve falls from the static level Fs to Fc: Fs < Fc reads as Fs = Fc.
+            stribeck = true; Sc = p[0]; Ss = std::max(p[1], p[0]); Svs = std::max(std::fabs(p[2]), 1e-12);
+            break;
         case Effect::backlash: bl = std::fabs(p[0]); break;
         case Effect::deadzone: dz = std::fabs(p[0]); break;
         case Effect::saturation: sat = std::max(std::fabs(p[0]), 1e-12); break;

@@ -150,7 +150,7 @@ std::string gap_report_html(const gap::GapResult& r, const nlohmann::json& j, co
     o << "</table>\n";
 
     // Candidates.
-    o << "<h2>Candidates (best first)</h2>\n<p>score = shrink &minus; 0.01 &times; fitted parameters; shrink = 1 &minus; gap_after/gap_before on held-out data.</p>\n"
+    o << "<h2>Candidates (best first)</h2>\n<p>score = shrink &minus; 0.005 &times; fitted parameters; shrink = 1 &minus; gap_after/gap_before on held-out data.</p>\n"
          "<table><tr><th>effect</th><th>shrink</th><th>score</th><th>gap after</th><th class=l>parameters</th></tr>\n";
     for (const auto& c : j["candidates"]) {
         std::string ps;

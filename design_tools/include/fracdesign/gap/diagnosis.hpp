@@ -24,7 +24,7 @@ struct GapOptions {
     std::vector<std::string> outputs;   // compared outputs (default: model outputs present in the data)
     std::vector<Effect> effects = all_effects();  // candidates tried
     double holdout = 0.3;               // held-out tail fraction without a validation record
-    double param_penalty = 0.01;        // score = shrink - param_penalty * (number of fitted parameters)
+    double param_penalty = 0.005;       // score = shrink - param_penalty * (number of fitted parameters)
     double margin = 0.05;               // forward selection: relative held-out gap reduction needed to add an effect
     int max_effects = 3;                // forward selection depth
     int max_iterations = 30;            // Ceres iterations per start (half in forward selection)

@@ -1,0 +1,135 @@
+// test_gap_cli.cpp - `fracdesign gap` end to end: the happy path writes
+// result.json and report.html; each bad input gives one clear message on
+// stderr, a non-zero exit, and no output directory.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Outcome {
+    int status;
+    std::string err;
+};
+
+fs::path workdir()
+{
+    static const fs::path d = [] {
+        fs::path p = fs::temp_directory_path() / ("fracdesign_gap_cli_" + std::to_string(::getpid()));
+        fs::remove_all(p);
+        fs::create_directories(p);
+        return p;
+    }();
+    return d;
+}
+
+void write(const fs::path& p, const std::string& s)
+{
+    std::ofstream o(p);
+    o << s;
+}
+
+const char* kModel = R"({"schema": "frac.model", "version": 1, "kind": "state_space", "name": "msd",
+  "domain": "continuous", "A": [[0, 1], [-20, -2]], "B": [[0], [1]], "C": [[1, 0], [0, 1]],
+  "inputs": ["u"], "outputs": ["x", "v"], "gap": {"velocity": "v", "force_input": "u"}})";
+
+// t,u,x,v with x, v from a crude Euler replay of the model (the content only needs to be plausible).
+std::string csv(const std::string& header, int rows, double jump_at = -1, bool nan = false)
+{
+    std::ostringstream o;
+    o.precision(10);
+    o << header << "\n";
+    double x = 0, v = 0, t = 0;
+    for (int k = 0; k < rows; ++k) {
+        const double u = std::sin(0.7 * t) + 0.5 * std::sin(2.3 * t);
+        o << t << "," << u << "," << x << "," << ((nan && k == rows / 2) ? std::string("nan") : std::to_string(v)) << "\n";
+        const double a = u - 20 * x - 2 * v;
+        x += 0.01 * v;
+        v += 0.01 * a;
+        t += (k == int(jump_at)) ? 0.02 : 0.01;
+    }
+    return o.str();
+}
+
+Outcome run(const std::string& args)
+{
+    const fs::path err = workdir() / "stderr.txt";
+    const std::string cmd = std::string(FRACDESIGN_EXE) + " gap " + args + " > /dev/null 2> " + err.string();
+    const int rc = std::system(cmd.c_str());
+    std::ifstream in(err);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return {rc, ss.str()};
+}
+
+std::string lower(std::string s)
+{
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return s;
+}
+
+void expect_refused(const std::string& data, const std::string& keyword, const std::string& model = kModel)
+{
+    const fs::path d = workdir();
+    write(d / "model.json", model);
+    write(d / "data.csv", data);
+    const fs::path out = d / ("out_" + std::to_string(std::hash<std::string>()(keyword)));
+    const Outcome r = run("--model " + (d / "model.json").string() + " --data " + (d / "data.csv").string() + " --out " + out.string());
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(lower(r.err).find(keyword), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace
+
+TEST(GapCli, writes_result_json_and_report)
+{
+    const fs::path d = workdir();
+    write(d / "model.json", kModel);
+    write(d / "data.csv", csv("t,u,x,v", 600));
+    const fs::path out = d / "ok";
+    const Outcome r = run("--model " + (d / "model.json").string() + " --data " + (d / "data.csv").string() +
+                      " --effects viscous_friction,gain_error --out " + out.string());
+    ASSERT_EQ(r.status, 0) << r.err;
+    std::ifstream in(out / "result.json");
+    const nlohmann::json j = nlohmann::json::parse(in);
+    EXPECT_EQ(j["schema"], "frac.gap");
+    EXPECT_EQ(j["version"], 1);
+    EXPECT_TRUE(j.contains("verdict") && j.contains("candidates") && j.contains("where"));
+    std::ifstream html(out / "report.html");
+    std::stringstream ss;
+    ss << html.rdbuf();
+    EXPECT_NE(ss.str().find("<svg"), std::string::npos);
+    EXPECT_EQ(ss.str().find("http://cdn"), std::string::npos);
+    for (const auto& e : fs::directory_iterator(d)) EXPECT_EQ(e.path().filename().string().rfind(".gap-tmp", 0), std::string::npos);
+}
+
+TEST(GapCli, refuses_mismatched_column_names)
+{
+    expect_refused(csv("t,u,pos,vel", 300), "model/data mismatch");
+}
+
+TEST(GapCli, refuses_non_uniform_time) { expect_refused(csv("t,u,x,v", 300, 100), "uniform"); }
+
+TEST(GapCli, refuses_nan)
+{
+    expect_refused(csv("t,u,x,v", 300, -1, true), "finite");
+}
+
+TEST(GapCli, refuses_a_model_whose_input_is_not_in_the_data)
+{
+    std::string m = kModel;
+    m.replace(m.find("\"inputs\": [\"u\"]"), 15, "\"inputs\": [\"tau\"]");
+    m.replace(m.find("\"force_input\": \"u\""), 18, "\"force_input\": \"tau\"");
+    expect_refused(csv("t,u,x,v", 300), "model/data mismatch", m);
+}
