@@ -194,7 +194,8 @@ EffectSetup effect_setup(Effect e, const Context& c)
         break;
     case Effect::unmodelled_mode: {
         const double flo = std::max(2.0 / c.fit_seconds, 1e-3), fhi = 0.25 / c.Ts;
-        s.spec = {{1.0, flo, fhi, false}, {1.0, 0.005, 1.0, false}};
+        // zeta <= 0.5: a resonant mode, not an extra first-order lag.
+        s.spec = {{1.0, flo, fhi, false}, {1.0, 0.005, 0.5, false}};
         for (size_t i = 0; i < ny; ++i) s.spec.push_back({c.Sy[i] / c.Su, -big, big, false});
         for (double f : c.residual_peaks_hz) {
             if (f < flo || f > fhi) continue;

@@ -220,11 +220,14 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     }
     const double bv = cvB[size_t(fi)];
     const double eps = s.eps_velocity;
-    // Mode: eta'' + 2 zeta w eta' + w^2 eta = w^2 u, discretised with zero-order hold.
+    // Mode: eta'' + 2 zeta w eta' + w^2 eta = w^2 u, discretised with zero-order
+    // hold; the outputs see g eta'/w, a resonance with no static gain (a static
+    // gain change is gain_error's job), peak g/(2 zeta) at w.
     Eigen::Matrix2d Am = Eigen::Matrix2d::Identity();
     Eigen::Vector2d Bm = Eigen::Vector2d::Zero();
+    const double mode_w = 2 * M_PI * std::max(f_hz, 1e-6);
     if (mode) {
-        const double w = 2 * M_PI * std::max(f_hz, 1e-6);
+        const double w = mode_w;
         Eigen::MatrixXd Ac(2, 2), Bc(2, 1), Ad, Bd;
         Ac << 0, 1, -w * w, -2 * zeta * w;
         Bc << 0, w * w;
@@ -266,7 +269,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
             for (int j = 0; j < nx; ++j) acc += m.C(i, j) * x[size_t(j)];
             if (with_d)
                 for (int j = 0; j < nu; ++j) acc += m.D(i, j) * up[size_t(j)];
-            ytrue[size_t(i)] = acc + mode_gain[size_t(i)] * eta[0];
+            ytrue[size_t(i)] = acc + mode_gain[size_t(i)] * eta[1] / mode_w;
         }
         if (h_out.len == 0) h_out.init(ny, dout + 1, ytrue.data());
         h_out.push(ytrue.data());
