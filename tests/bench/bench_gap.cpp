@@ -17,11 +17,12 @@ namespace {
 nlohmann::json model_doc()
 {
     const double m1 = 1.0, m2 = 0.5, k = 400.0, c = 2.0, d1 = 5.0;
-    return {{"schema", "frac.model"}, {"version", 1}, {"kind", "state_space"}, {"name", "two_mass"},
-            {"domain", "continuous"},
+    return {{"schema", "frac.model"}, {"version", 1}, {"kind", "statespace"}, {"name", "two_mass"},
+            {"time", "continuous"},
             {"A", {{0, 0, 1, 0}, {0, 0, 0, 1}, {-k / m1, k / m1, -(c + d1) / m1, c / m1}, {k / m2, -k / m2, c / m2, -c / m2}}},
             {"B", {{0}, {0}, {1 / m1}, {0}}},
             {"C", {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}}},
+            {"D", {{0}, {0}, {0}}},
             {"inputs", {"F"}}, {"outputs", {"x1", "x2", "v1"}},
             {"gap", {{"velocity", "v1"}, {"force_input", "F"}}}};
 }

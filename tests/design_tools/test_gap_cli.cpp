@@ -38,8 +38,8 @@ void write(const fs::path& p, const std::string& s)
     o << s;
 }
 
-const char* kModel = R"({"schema": "frac.model", "version": 1, "kind": "state_space", "name": "msd",
-  "domain": "continuous", "A": [[0, 1], [-20, -2]], "B": [[0], [1]], "C": [[1, 0], [0, 1]],
+const char* kModel = R"({"schema": "frac.model", "version": 1, "kind": "statespace", "name": "msd",
+  "time": "continuous", "A": [[0, 1], [-20, -2]], "B": [[0], [1]], "C": [[1, 0], [0, 1]], "D": [[0], [0]],
   "inputs": ["u"], "outputs": ["x", "v"], "gap": {"velocity": "v", "force_input": "u"}})";
 
 // t,u,x,v with x, v from a crude Euler replay of the model (the content only needs to be plausible).

@@ -23,12 +23,13 @@ nlohmann::json plant_doc()
     const double m = 1.0, c = 2.0, k = 20.0;
     return {{"schema", "frac.model"},
             {"version", 1},
-            {"kind", "state_space"},
+            {"kind", "statespace"},
             {"name", "mass_spring_damper"},
-            {"domain", "continuous"},
+            {"time", "continuous"},
             {"A", {{0.0, 1.0}, {-k / m, -c / m}}},
             {"B", {{0.0}, {1.0 / m}}},
             {"C", {{1.0, 0.0}, {0.0, 1.0}}},
+            {"D", {{0.0}, {0.0}}},
             {"inputs", {"u"}},
             {"outputs", {"x", "v"}},
             {"gap", {{"velocity", "v"}, {"force_input", "u"}}}};
@@ -57,7 +58,7 @@ nlohmann::json loop_doc()
     nlohmann::json d = plant_doc();
     d["gap"]["closed_loop"] = {{"references", {"r"}},
                                {"measured", {"x", "v"}},
-                               {"controller", {{"domain", "discrete"}, {"Ts", kTs}, {"D", {{40.0, -40.0, -4.0}}}}}};
+                               {"controller", {{"time", "discrete"}, {"Ts", kTs}, {"D", {{40.0, -40.0, -4.0}}}}}};
     return d;
 }
 

@@ -1,6 +1,8 @@
 // nominal.cpp - reading and discretising the nominal model (see nominal.hpp).
 #include "fracdesign/gap/nominal.hpp"
 
+#include "fracdesign/model_json.hpp"
+
 #include <cmath>
 #include <complex>
 #include <fstream>
@@ -83,7 +85,7 @@ void read_ss(const json& j, Eigen::Index m, Eigen::Index p, double Ts, const std
     B = matrix(j, "B", n, m, true, where);
     C = matrix(j, "C", p, n, true, where);
     D = matrix(j, "D", p, m, false, where);
-    const std::string domain = j.value("domain", "continuous");
+    const std::string domain = j.value("time", "continuous");
     if (domain == "continuous") {
         Eigen::MatrixXd Ad, Bd;
         zoh(A, B, Ts, Ad, Bd);
@@ -97,7 +99,7 @@ void read_ss(const json& j, Eigen::Index m, Eigen::Index p, double Ts, const std
             throw std::runtime_error(where + ": model sample time " + std::to_string(mTs) +
                                      " s does not match the data's " + std::to_string(Ts) + " s");
     } else {
-        throw std::runtime_error(where + ": 'domain' must be \"continuous\" or \"discrete\"");
+        throw std::runtime_error(where + ": 'time' must be \"continuous\" or \"discrete\"");
     }
 }
 
@@ -105,18 +107,34 @@ void read_ss(const json& j, Eigen::Index m, Eigen::Index p, double Ts, const std
 
 NominalModel nominal_from_json(const json& doc, double Ts)
 {
-    const std::string where = "model";
-    if (!doc.is_object() || doc.value("schema", "") != "frac.model")
-        throw std::runtime_error("model: not a \"frac.model\" document (schema field)");
-    if (doc.value("kind", "state_space") != "state_space")
-        throw std::runtime_error("model: only kind \"state_space\" can be replayed by the gap diagnosis");
+    // The plant: any rational model of the project's model format (model_json.hpp).
+    if (!doc.is_object()) throw std::runtime_error("model: not a JSON object");
+    StateSpace ss;
+    try {
+        ss = model_state_space(model_from_json(doc));
+    } catch (const ModelFormatError& e) {
+        throw std::runtime_error(e.what());
+    } catch (const std::invalid_argument& e) {
+        throw std::runtime_error(std::string("model: the gap replay needs a state-space model (") + e.what() + ")");
+    }
     NominalModel m;
-    m.name = doc.value("name", "nominal");
+    m.name = doc.value("name", model_kind(model_from_json(doc)));
     m.Ts = Ts;
-    m.inputs = names(doc, "inputs", where);
-    m.outputs = names(doc, "outputs", where);
-    if (m.inputs.empty() || m.outputs.empty()) throw std::runtime_error("model: needs at least one input and one output");
-    read_ss(doc, Eigen::Index(m.inputs.size()), Eigen::Index(m.outputs.size()), Ts, where, m.A, m.B, m.C, m.D);
+    m.inputs = ss.inputs;
+    m.outputs = ss.outputs;
+    if (m.inputs.size() != size_t(ss.nu()) || m.outputs.size() != size_t(ss.ny()))
+        throw std::runtime_error("model: the gap diagnosis needs input and output names (they name the data columns)");
+    if (ss.continuous()) {
+        zoh(ss.A, ss.B, Ts, m.A, m.B);
+    } else {
+        if (std::fabs(ss.Ts - Ts) > 1e-3 * Ts)
+            throw std::runtime_error("model: sample time " + std::to_string(ss.Ts) + " s does not match the data's " +
+                                     std::to_string(Ts) + " s");
+        m.A = ss.A;
+        m.B = ss.B;
+    }
+    m.C = ss.C;
+    m.D = ss.D;
     if (m.A.rows() == 0) throw std::runtime_error("model: the plant has no states");
     const json g = doc.value("gap", json::object());
     if (g.contains("velocity")) {

@@ -22,12 +22,13 @@ nlohmann::json emps_nominal(double dt)
 {
     return {{"schema", "frac.model"},
             {"version", 1},
-            {"kind", "state_space"},
+            {"kind", "statespace"},
             {"name", "emps_rigid_mass_pd"},
-            {"domain", "continuous"},
+            {"time", "continuous"},
             {"A", {{0.0, 1.0}, {0.0, 0.0}}},
             {"B", {{0.0}, {kGtau / kM}}},
             {"C", {{1.0, 0.0}, {0.0, 1.0}}},
+            {"D", {{0.0}, {0.0}}},
             {"inputs", {"u_V"}},
             {"outputs", {"qm_m", "v_mps"}},
             {"gap",
@@ -39,7 +40,7 @@ nlohmann::json emps_nominal(double dt)
                 // vir = kv (kp (qg - q) - (qf(k) - qf(k-1))/dt), qf = (q(k) + q(k-1))/2 (desc. eq. 6);
                 // state [q(k-1), q(k-2)].
                 {"controller",
-                 {{"domain", "discrete"},
+                 {{"time", "discrete"},
                   {"Ts", dt},
                   {"A", {{0.0, 0.0}, {1.0, 0.0}}},
                   {"B", {{0.0, 1.0}, {0.0, 0.0}}},

@@ -6,9 +6,10 @@
 //   w(k)  = [r(k); y_m(k)]          references from the data, measured model outputs
 //   xc(k+1) = Ac xc(k) + Bc w(k),   c(k) = Cc xc(k) + Dc w(k)
 //   u(k)  = sat(c(k - delay)) + a(k) additive data columns (e.g. injected pulses)
-// The document format (schema "frac.model", kind "state_space", with the
-// "gap" extension section for the loop and the friction hook-up) is described
-// in docs/gap.md.
+// The plant is any rational model of the project's model format
+// (fracdesign/model_json.hpp, e.g. kind "statespace"); the "gap" extension
+// section of the document gives the loop and the friction hook-up
+// (docs/gap.md).
 #pragma once
 #include <Eigen/Dense>
 #include <limits>
@@ -53,7 +54,8 @@ struct NominalModel {
 
 // Builds the model from a "frac.model" document, discretising a continuous
 // plant (and controller) with zero-order hold at Ts. std::runtime_error with
-// one clear message for a malformed document (dimensions, names, schema).
+// one clear message for a malformed document (dimensions, names, schema,
+// an irrational model kind).
 NominalModel nominal_from_json(const nlohmann::json& doc, double Ts);
 NominalModel load_nominal_model(const std::string& path, double Ts);
 
