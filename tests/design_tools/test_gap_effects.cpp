@@ -184,3 +184,20 @@ TEST(GapEffects, result_json_has_the_fixed_keys)
     EXPECT_EQ(j["candidates"][0]["effect"], "viscous_friction");
     for (const char* k : {"effects", "params", "gap_after", "shrink"}) EXPECT_TRUE(j["verdict"].contains(k)) << k;
 }
+
+TEST(GapWhere, band_shares_sum_to_one_and_band_nrmse_adds_up)
+{
+    const NominalModel m = nominal_from_json(plant_doc(), kTs);
+    const Signals data = record(m, {{Effect::coulomb_friction, {2.0, 0.0}}});
+    GapOptions opt;
+    opt.effects = {Effect::coulomb_friction};
+    const GapResult r = diagnose(m, data, nullptr, opt);
+    double share = 0;
+    for (const auto& b : r.bands) share += b[2];
+    EXPECT_NEAR(share, 1.0, 1e-9);
+    for (size_t c = 0; c < r.outputs.size(); ++c) {
+        double sq = 0;
+        for (const auto& b : r.band_nrmse_before) sq += b[c] * b[c];
+        EXPECT_NEAR(std::sqrt(sq), r.gap_before[c], 1e-6 * r.gap_before[c]);
+    }
+}

@@ -442,14 +442,14 @@ std::vector<Window> flag_windows(const Eigen::VectorXd& res, const ReplayTrace& 
     if (wr.empty()) return {};
     std::vector<double> sorted = wr;
     std::sort(sorted.begin(), sorted.end());
-    const double med = sorted[sorted.size() / 2], q75 = sorted[sorted.size() * 3 / 4];
+    const double med = sorted[sorted.size() / 2], q85 = sorted[sorted.size() * 85 / 100];
     const double vmax = nom.v.cwiseAbs().maxCoeff();
     Eigen::VectorXd a = Eigen::VectorXd::Zero(N);
     for (Eigen::Index k = 1; k < N; ++k) a(k) = (nom.v(k) - nom.v(k - 1)) / Ts;
     const double amax = a.cwiseAbs().maxCoeff();
     std::vector<Window> out;
     for (size_t i = 0; i < wr.size(); ++i) {
-        if (!(wr[i] >= 2.0 * med && wr[i] >= q75 && wr[i] > 0)) continue;
+        if (!(wr[i] >= 1.25 * med && wr[i] >= q85 && wr[i] > 0)) continue;
         const Eigen::Index s = Eigen::Index(i) * W;
         std::vector<std::string> cond;
         if (vmax > 0) {
