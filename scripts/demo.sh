@@ -52,6 +52,9 @@ stage "4/4 gap diagnosis of the recorded run against the nominal model"
 nominal=$src/hil/scenarios/demo_nominal.json
 if have_cmd gap && [ -f "$nominal" ] && [ -f "$out/hil/signals.csv" ]; then
   run "$fd" gap --model "$nominal" --data "$out/hil/signals.csv" --out "$out/gap" || { echo "demo: gap failed"; exit 1; }
+  # The truth the diagnosis was not told, for the reader to compare with its verdict.
+  echo "withheld in the bench plant: $(grep -E '^plant.friction' "$scenario") (Stribeck friction with stiction, seed 004 (5.4));"
+  echo "  the nominal model has no friction. Compare with the verdict above."
   echo "report: $out/gap/report.html"
 else
   missing+=("gap diagnosis of the bench run (needs fracdesign gap, $nominal and the HIL run)")
