@@ -1,5 +1,6 @@
 /* Host emulation of the B&R task model (plc_rt.h). */
 #include "plc_rt.h"
+#include "plc_rt_internal.h"
 
 #include <errno.h>
 #include <stdarg.h>
@@ -8,7 +9,7 @@
 
 #define NS_PER_US 1000u
 
-static void set_err(char *err, size_t errlen, const char *fmt, ...)
+void plc_rt_set_err(char *err, size_t errlen, const char *fmt, ...)
 {
     va_list ap;
     if (!err || errlen == 0) {
@@ -40,7 +41,7 @@ int plc_rt_init(plc_rt *rt, const plc_rt_config *cfg, const plc_program *const *
     unsigned c;
     size_t i, j;
     if (!rt || !cfg || (n && !registry) || cfg->tick_us == 0) {
-        set_err(err, errlen, "plc_rt_init: NULL argument or unvalidated configuration");
+        plc_rt_set_err(err, errlen, "plc_rt_init: NULL argument or unvalidated configuration");
         return PLC_RT_E_ARG;
     }
     memset(rt, 0, sizeof(*rt));
@@ -61,7 +62,7 @@ int plc_rt_init(plc_rt *rt, const plc_rt_config *cfg, const plc_program *const *
                 }
             }
             if (!found) {
-                set_err(err, errlen, "[cyclic%u]: program '%s' is not in the registry", c + 1,
+                plc_rt_set_err(err, errlen, "[cyclic%u]: program '%s' is not in the registry", c + 1,
                         k->programs[i]);
                 return PLC_RT_E_PROGRAM;
             }

@@ -12,24 +12,13 @@
  * cycle x multiplier = 400 us x 0.25 = 100 us, as the thesis text says.
  */
 #include "plc_rt.h"
+#include "plc_rt_internal.h"
 
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
-
-static void set_err(char *err, size_t errlen, const char *fmt, ...)
-{
-    va_list ap;
-    if (!err || errlen == 0) {
-        return;
-    }
-    va_start(ap, fmt);
-    vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-}
 
 static char *trim(char *s)
 {
@@ -92,19 +81,19 @@ static int validate(plc_rt_config *cfg, const char *name, char *err, size_t errl
 {
     unsigned c, used = 0;
     if (cfg->interface_cycle_us == 0 || cfg->interface_cycle_us % PLC_RT_INTERFACE_BASE_US) {
-        set_err(err, errlen, "%s: interface_cycle_us = %u is not a positive multiple of %u us",
+        plc_rt_set_err(err, errlen, "%s: interface_cycle_us = %u is not a positive multiple of %u us",
                 name, (unsigned)cfg->interface_cycle_us, PLC_RT_INTERFACE_BASE_US);
         return PLC_RT_E_CONFIG;
     }
     if ((cfg->interface_cycle_us * cfg->multiplier_num) % cfg->multiplier_den) {
-        set_err(err, errlen, "%s: system tick %u us x %u/%u is not a whole number of us", name,
+        plc_rt_set_err(err, errlen, "%s: system tick %u us x %u/%u is not a whole number of us", name,
                 (unsigned)cfg->interface_cycle_us, (unsigned)cfg->multiplier_num,
                 (unsigned)cfg->multiplier_den);
         return PLC_RT_E_CONFIG;
     }
     cfg->tick_us = cfg->interface_cycle_us * cfg->multiplier_num / cfg->multiplier_den;
     if (cfg->cyclic_resources < 1 || cfg->cyclic_resources > PLC_RT_CLASSES) {
-        set_err(err, errlen, "%s: cyclic_resources = %u must be 1..%d", name,
+        plc_rt_set_err(err, errlen, "%s: cyclic_resources = %u must be 1..%d", name,
                 (unsigned)cfg->cyclic_resources, PLC_RT_CLASSES);
         return PLC_RT_E_CONFIG;
     }
@@ -112,31 +101,31 @@ static int validate(plc_rt_config *cfg, const char *name, char *err, size_t errl
         const plc_rt_class_config *k = &cfg->cls[c];
         if (k->duration_us == 0) {
             if (k->n_programs) {
-                set_err(err, errlen, "%s: [cyclic%u] has programs but no duration_us", name, c + 1);
+                plc_rt_set_err(err, errlen, "%s: [cyclic%u] has programs but no duration_us", name, c + 1);
                 return PLC_RT_E_CONFIG;
             }
             continue;
         }
         used = c + 1;
         if (k->duration_us % cfg->tick_us) {
-            set_err(err, errlen, "%s: [cyclic%u] duration_us = %u is not a multiple of the system tick %u us",
+            plc_rt_set_err(err, errlen, "%s: [cyclic%u] duration_us = %u is not a multiple of the system tick %u us",
                     name, c + 1, (unsigned)k->duration_us, (unsigned)cfg->tick_us);
             return PLC_RT_E_CONFIG;
         }
     }
     if (used > cfg->cyclic_resources) {
-        set_err(err, errlen, "%s: [cyclic%u] is configured but cyclic_resources = %u", name, used,
+        plc_rt_set_err(err, errlen, "%s: [cyclic%u] is configured but cyclic_resources = %u", name, used,
                 (unsigned)cfg->cyclic_resources);
         return PLC_RT_E_CONFIG;
     }
     if (cfg->idle_task_class > PLC_RT_CLASSES
         || (cfg->idle_task_class && cfg->cls[cfg->idle_task_class - 1].duration_us == 0)) {
-        set_err(err, errlen, "%s: idle_task_class = %u is not a configured class", name,
+        plc_rt_set_err(err, errlen, "%s: idle_task_class = %u is not a configured class", name,
                 (unsigned)cfg->idle_task_class);
         return PLC_RT_E_CONFIG;
     }
     if (cfg->idle_time_us % cfg->tick_us) {
-        set_err(err, errlen, "%s: idle_time_us = %u is not a multiple of the system tick", name,
+        plc_rt_set_err(err, errlen, "%s: idle_time_us = %u is not a multiple of the system tick", name,
                 (unsigned)cfg->idle_time_us);
         return PLC_RT_E_CONFIG;
     }
@@ -150,7 +139,7 @@ int plc_rt_config_parse(plc_rt_config *cfg, const char *text, const char *name, 
     int lineno = 0;
     int section = -1; /* -1 none, 0 timing, 1 resources, 2.. cyclic(section-2) */
     if (!cfg || !text) {
-        set_err(err, errlen, "plc_rt_config_parse: NULL argument");
+        plc_rt_set_err(err, errlen, "plc_rt_config_parse: NULL argument");
         return PLC_RT_E_ARG;
     }
     if (!name) {
@@ -165,7 +154,7 @@ int plc_rt_config_parse(plc_rt_config *cfg, const char *text, const char *name, 
         char *s, *eq, *key, *val, *hash;
         lineno++;
         if (n >= sizeof(line)) {
-            set_err(err, errlen, "%s:%d: line too long", name, lineno);
+            plc_rt_set_err(err, errlen, "%s:%d: line too long", name, lineno);
             return PLC_RT_E_CONFIG;
         }
         memcpy(line, p, n);
@@ -183,7 +172,7 @@ int plc_rt_config_parse(plc_rt_config *cfg, const char *text, const char *name, 
             unsigned k;
             char *close = strchr(s, ']');
             if (!close || close[1]) {
-                set_err(err, errlen, "%s:%d: malformed section header '%s'", name, lineno, s);
+                plc_rt_set_err(err, errlen, "%s:%d: malformed section header '%s'", name, lineno, s);
                 return PLC_RT_E_CONFIG;
             }
             *close = '\0';
@@ -196,7 +185,7 @@ int plc_rt_config_parse(plc_rt_config *cfg, const char *text, const char *name, 
                        && strspn(s + 6, "0123456789") == strlen(s + 6)) {
                 section = 2 + (int)k - 1;
             } else {
-                set_err(err, errlen, "%s:%d: unknown section [%s] (timing, resources, cyclic1..cyclic8)",
+                plc_rt_set_err(err, errlen, "%s:%d: unknown section [%s] (timing, resources, cyclic1..cyclic8)",
                         name, lineno, s);
                 return PLC_RT_E_CONFIG;
             }
@@ -204,20 +193,20 @@ int plc_rt_config_parse(plc_rt_config *cfg, const char *text, const char *name, 
         }
         eq = strchr(s, '=');
         if (!eq) {
-            set_err(err, errlen, "%s:%d: expected 'key = value', found '%s'", name, lineno, s);
+            plc_rt_set_err(err, errlen, "%s:%d: expected 'key = value', found '%s'", name, lineno, s);
             return PLC_RT_E_CONFIG;
         }
         *eq = '\0';
         key = trim(s);
         val = trim(eq + 1);
         if (section < 0) {
-            set_err(err, errlen, "%s:%d: '%s' outside a section", name, lineno, key);
+            plc_rt_set_err(err, errlen, "%s:%d: '%s' outside a section", name, lineno, key);
             return PLC_RT_E_CONFIG;
         }
 #define U32_KEY(kname, field) \
         if (!strcmp(key, kname)) { \
             if (parse_u32(val, &(field))) { \
-                set_err(err, errlen, "%s:%d: %s = '%s' is not an unsigned integer", name, lineno, key, val); \
+                plc_rt_set_err(err, errlen, "%s:%d: %s = '%s' is not an unsigned integer", name, lineno, key, val); \
                 return PLC_RT_E_CONFIG; \
             } \
             continue; \
@@ -228,7 +217,7 @@ int plc_rt_config_parse(plc_rt_config *cfg, const char *text, const char *name, 
             U32_KEY("idle_time_us", cfg->idle_time_us)
             if (!strcmp(key, "multiply_cycle_time_by")) {
                 if (parse_multiplier(val, &cfg->multiplier_num, &cfg->multiplier_den)) {
-                    set_err(err, errlen, "%s:%d: multiply_cycle_time_by = '%s' is not a positive integer "
+                    plc_rt_set_err(err, errlen, "%s:%d: multiply_cycle_time_by = '%s' is not a positive integer "
                             "or the reciprocal of one", name, lineno, val);
                     return PLC_RT_E_CONFIG;
                 }
@@ -240,7 +229,7 @@ int plc_rt_config_parse(plc_rt_config *cfg, const char *text, const char *name, 
                 } else if (!strcmp(val, "service")) {
                     cfg->reaction = PLC_RT_REACT_SERVICE;
                 } else {
-                    set_err(err, errlen, "%s:%d: violation_reaction = '%s' (continue or service)", name,
+                    plc_rt_set_err(err, errlen, "%s:%d: violation_reaction = '%s' (continue or service)", name,
                             lineno, val);
                     return PLC_RT_E_CONFIG;
                 }
@@ -259,7 +248,7 @@ int plc_rt_config_parse(plc_rt_config *cfg, const char *text, const char *name, 
                 while (tok) {
                     char *t = trim(tok);
                     if (!*t || strlen(t) >= PLC_RT_NAME_LEN || k->n_programs >= PLC_RT_PROGS_PER_CLASS) {
-                        set_err(err, errlen, "%s:%d: bad program list (names 1..%d chars, at most %d)", name,
+                        plc_rt_set_err(err, errlen, "%s:%d: bad program list (names 1..%d chars, at most %d)", name,
                                 lineno, PLC_RT_NAME_LEN - 1, PLC_RT_PROGS_PER_CLASS);
                         return PLC_RT_E_CONFIG;
                     }
@@ -270,7 +259,7 @@ int plc_rt_config_parse(plc_rt_config *cfg, const char *text, const char *name, 
             }
         }
 #undef U32_KEY
-        set_err(err, errlen, "%s:%d: unknown key '%s' in this section", name, lineno, key);
+        plc_rt_set_err(err, errlen, "%s:%d: unknown key '%s' in this section", name, lineno, key);
         return PLC_RT_E_CONFIG;
     }
     return validate(cfg, name, err, errlen);
@@ -283,19 +272,19 @@ int plc_rt_config_load(plc_rt_config *cfg, const char *path, char *err, size_t e
     size_t n;
     int rc;
     if (!cfg || !path) {
-        set_err(err, errlen, "plc_rt_config_load: NULL argument");
+        plc_rt_set_err(err, errlen, "plc_rt_config_load: NULL argument");
         return PLC_RT_E_ARG;
     }
     f = fopen(path, "r");
     if (!f) {
-        set_err(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+        plc_rt_set_err(err, errlen, "%s: cannot open: %s", path, strerror(errno));
         return PLC_RT_E_CONFIG;
     }
     n = fread(buf, 1, sizeof(buf) - 1, f);
     rc = !feof(f);
     fclose(f);
     if (rc) {
-        set_err(err, errlen, "%s: larger than %u bytes", path, (unsigned)sizeof(buf) - 1);
+        plc_rt_set_err(err, errlen, "%s: larger than %u bytes", path, (unsigned)sizeof(buf) - 1);
         return PLC_RT_E_CONFIG;
     }
     buf[n] = '\0';
