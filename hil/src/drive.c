@@ -186,23 +186,11 @@ int hil_drive_on_frame(struct hil_drive *d, const struct hil_can_frame *f, struc
         return st;
     switch (f->id) {
     case HIL_COB_NMT: {
-        uint8_t cmd, node;
-        if (hil_co_nmt_decode(f, &cmd, &node) != HIL_OK) {
-            d->rx.bad_value++;
-            return HIL_E_FORMAT;
-        }
-        if (node != 0 && node != HIL_NODE_DRIVE) {
-            d->rx.other++;
-            return HIL_E_UNKNOWN_ID;
-        }
-        d->rx.accepted++;
-        if (cmd == HIL_NMT_START)
-            d->nmt = HIL_NMT_STATE_OPERATIONAL;
-        else if (cmd == HIL_NMT_STOP)
-            d->nmt = HIL_NMT_STATE_STOPPED;
-        else if (cmd == HIL_NMT_PREOP)
-            d->nmt = HIL_NMT_STATE_PREOP;
-        else {
+        int reset_cmd;
+        st = hil_nmt_on_frame(&d->rx, f, HIL_NODE_DRIVE, &d->nmt, &reset_cmd);
+        if (st != HIL_OK)
+            return st;
+        if (reset_cmd) {
             reset(d);
             d->nmt = HIL_NMT_STATE_BOOTUP;
             heartbeat(d, out);

@@ -118,23 +118,11 @@ int hil_imu_on_frame(struct hil_imu *m, const struct hil_can_frame *f, struct hi
         return st;
     switch (f->id) {
     case HIL_COB_NMT: {
-        uint8_t cmd, node;
-        if (hil_co_nmt_decode(f, &cmd, &node) != HIL_OK) {
-            m->rx.bad_value++;
-            return HIL_E_FORMAT;
-        }
-        if (node != 0 && node != HIL_NODE_IMU) {
-            m->rx.other++;
-            return HIL_E_UNKNOWN_ID;
-        }
-        m->rx.accepted++;
-        if (cmd == HIL_NMT_START)
-            m->nmt = HIL_NMT_STATE_OPERATIONAL;
-        else if (cmd == HIL_NMT_STOP)
-            m->nmt = HIL_NMT_STATE_STOPPED;
-        else if (cmd == HIL_NMT_PREOP)
-            m->nmt = HIL_NMT_STATE_PREOP;
-        else {
+        int reset_cmd;
+        st = hil_nmt_on_frame(&m->rx, f, HIL_NODE_IMU, &m->nmt, &reset_cmd);
+        if (st != HIL_OK)
+            return st;
+        if (reset_cmd) {
             m->npending = 0;
             m->nmt = HIL_NMT_STATE_BOOTUP;
             heartbeat(m, out);

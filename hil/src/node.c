@@ -65,3 +65,30 @@ int hil_rx_screen(struct hil_rx_stats *s, const struct hil_can_frame *f)
         s->bad_value++;
     return st;
 }
+
+int hil_nmt_on_frame(struct hil_rx_stats *s, const struct hil_can_frame *f, uint8_t self, uint8_t *state,
+                     int *reset)
+{
+    uint8_t cmd, node;
+    if (!s || !f || !state || !reset)
+        return HIL_E_ARG;
+    *reset = 0;
+    if (hil_co_nmt_decode(f, &cmd, &node) != HIL_OK) {
+        s->bad_value++;
+        return HIL_E_FORMAT;
+    }
+    if (node != 0 && node != self) {
+        s->other++;
+        return HIL_E_UNKNOWN_ID;
+    }
+    s->accepted++;
+    if (cmd == HIL_NMT_START)
+        *state = HIL_NMT_STATE_OPERATIONAL;
+    else if (cmd == HIL_NMT_STOP)
+        *state = HIL_NMT_STATE_STOPPED;
+    else if (cmd == HIL_NMT_PREOP)
+        *state = HIL_NMT_STATE_PREOP;
+    else
+        *reset = 1;
+    return HIL_OK;
+}

@@ -9,6 +9,7 @@
 #include "hil/ctrl.h"
 #include "hil/drive.h"
 #include "hil/imu.h"
+#include "hil/node.h"
 #include "hil/plant.h"
 
 static struct hil_can_frame nmt_start(void)
@@ -716,6 +717,43 @@ static void test_ctrl_counts_missed_inputs_and_ignores_malformed(void **state)
     assert_int_equal(hil_ctrl_init(&c, &p), HIL_E_ARG);
 }
 
+/* NMT node control shared by the drive and IMU (hil_nmt_on_frame): start,
+ * stop, pre-operational, reset, another node's command, an invalid command. */
+static void test_nmt_commands_change_state_count_and_request_reset(void **state)
+{
+    struct hil_rx_stats rx;
+    struct hil_can_frame f;
+    uint8_t st = HIL_NMT_STATE_PREOP;
+    int reset = -1;
+    (void)state;
+    memset(&rx, 0, sizeof rx);
+    hil_co_nmt_encode(&f, HIL_NMT_START, HIL_NODE_DRIVE);
+    assert_int_equal(hil_nmt_on_frame(&rx, &f, HIL_NODE_DRIVE, &st, &reset), HIL_OK);
+    assert_int_equal(st, HIL_NMT_STATE_OPERATIONAL);
+    assert_int_equal(reset, 0);
+    hil_co_nmt_encode(&f, HIL_NMT_STOP, 0);
+    assert_int_equal(hil_nmt_on_frame(&rx, &f, HIL_NODE_DRIVE, &st, &reset), HIL_OK);
+    assert_int_equal(st, HIL_NMT_STATE_STOPPED);
+    hil_co_nmt_encode(&f, HIL_NMT_PREOP, 0);
+    assert_int_equal(hil_nmt_on_frame(&rx, &f, HIL_NODE_DRIVE, &st, &reset), HIL_OK);
+    assert_int_equal(st, HIL_NMT_STATE_PREOP);
+    hil_co_nmt_encode(&f, HIL_NMT_RESET_NODE, 0);
+    assert_int_equal(hil_nmt_on_frame(&rx, &f, HIL_NODE_DRIVE, &st, &reset), HIL_OK);
+    assert_int_equal(reset, 1);
+    assert_int_equal(st, HIL_NMT_STATE_PREOP); /* the node itself resets and boots up */
+    assert_int_equal(rx.accepted, 4);
+    hil_co_nmt_encode(&f, HIL_NMT_START, HIL_NODE_IMU);
+    assert_int_equal(hil_nmt_on_frame(&rx, &f, HIL_NODE_DRIVE, &st, &reset), HIL_E_UNKNOWN_ID);
+    assert_int_equal(rx.other, 1);
+    assert_int_equal(st, HIL_NMT_STATE_PREOP);
+    hil_co_nmt_encode(&f, HIL_NMT_START, 0);
+    f.data[0] = 0x33; /* not an NMT command */
+    assert_int_equal(hil_nmt_on_frame(&rx, &f, HIL_NODE_DRIVE, &st, &reset), HIL_E_FORMAT);
+    assert_int_equal(rx.bad_value, 1);
+    assert_int_equal(rx.accepted, 4);
+    assert_int_equal(st, HIL_NMT_STATE_PREOP);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -737,6 +775,7 @@ int main(void)
         cmocka_unit_test(test_twomass_fractional_kelvin_voigt_damping_rings_down_the_gear_mode),
         cmocka_unit_test(test_ctrl_watchdog_ramps_torque_to_zero_and_recovers),
         cmocka_unit_test(test_ctrl_counts_missed_inputs_and_ignores_malformed),
+        cmocka_unit_test(test_nmt_commands_change_state_count_and_request_reset),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -39,4 +39,13 @@ int hil_dict_check(const struct hil_can_frame *f);
  * bad_value). Returns the check's status. */
 int hil_rx_screen(struct hil_rx_stats *s, const struct hil_can_frame *f);
 
+/* NMT node control (CiA 301) for node `self`, after hil_rx_screen: decodes f,
+ * counts it in s (bad_value for an invalid command, other when addressed to
+ * another node, accepted otherwise) and applies start, stop and
+ * pre-operational to *state. A reset command leaves *state alone and sets
+ * *reset = 1: the node resets itself, sends its boot-up heartbeat and enters
+ * pre-operational. Returns HIL_OK, HIL_E_FORMAT or HIL_E_UNKNOWN_ID. */
+int hil_nmt_on_frame(struct hil_rx_stats *s, const struct hil_can_frame *f, uint8_t self, uint8_t *state,
+                     int *reset);
+
 #endif
