@@ -44,10 +44,15 @@ int plc_rt_init(plc_rt *rt, const plc_rt_config *cfg, const plc_program *const *
         plc_rt_set_err(err, errlen, "plc_rt_init: NULL argument or unvalidated configuration");
         return PLC_RT_E_ARG;
     }
+    if (cfg->cls[PLC_RT_IDLE_INDEX].n_programs && cfg->cls[PLC_RT_IDLE_INDEX].sim_cost_us == 0) {
+        plc_rt_set_err(err, errlen, "plc_rt_init: [idle] programs need sim_cost_us > 0");
+        return PLC_RT_E_ARG;
+    }
     memset(rt, 0, sizeof(*rt));
+    rt->running = -1;
     rt->cfg = *cfg;
     rt->tick_ns = (uint64_t)cfg->tick_us * NS_PER_US;
-    for (c = 0; c < PLC_RT_CLASSES; c++) {
+    for (c = 0; c <= PLC_RT_IDLE_INDEX; c++) {
         const plc_rt_class_config *k = &cfg->cls[c];
         plc_rt_class_state *s = &rt->cls[c];
         s->period_ns = (uint64_t)k->duration_us * NS_PER_US;
@@ -62,13 +67,19 @@ int plc_rt_init(plc_rt *rt, const plc_rt_config *cfg, const plc_program *const *
                 }
             }
             if (!found) {
-                plc_rt_set_err(err, errlen, "[cyclic%u]: program '%s' is not in the registry", c + 1,
-                        k->programs[i]);
+                if (c == PLC_RT_IDLE_INDEX) {
+                    plc_rt_set_err(err, errlen, "[idle]: program '%s' is not in the registry", k->programs[i]);
+                } else {
+                    plc_rt_set_err(err, errlen, "[cyclic%u]: program '%s' is not in the registry", c + 1,
+                            k->programs[i]);
+                }
                 return PLC_RT_E_PROGRAM;
             }
             s->progs[s->n_progs++] = found;
         }
     }
+    /* the idle class is always ready when it has programs */
+    rt->cls[PLC_RT_IDLE_INDEX].active = rt->cls[PLC_RT_IDLE_INDEX].n_progs > 0;
     return PLC_RT_OK;
 }
 
@@ -82,7 +93,7 @@ int plc_rt_start(plc_rt *rt)
     if (rt->started) {
         return PLC_RT_E_STATE;
     }
-    for (c = 0; c < PLC_RT_CLASSES; c++) {
+    for (c = 0; c <= PLC_RT_IDLE_INDEX; c++) {
         for (i = 0; i < rt->cls[c].n_progs; i++) {
             const plc_program *p = rt->cls[c].progs[i];
             if (p->init) {
@@ -101,7 +112,7 @@ void plc_rt_stop(plc_rt *rt)
     if (!rt || !rt->started) {
         return;
     }
-    for (c = PLC_RT_CLASSES - 1; c >= 0; c--) {
+    for (c = PLC_RT_IDLE_INDEX; c >= 0; c--) {
         for (i = rt->cls[c].n_progs; i-- > 0;) {
             const plc_program *p = rt->cls[c].progs[i];
             if (p->exit) {
@@ -182,7 +193,7 @@ static void class_end(plc_rt *rt, unsigned c, uint64_t t, uint64_t cpu_ns)
         st->response_ns_max = resp;
     }
     emit(rt, PLC_RT_EV_END, c, t);
-    s->active = 0;
+    s->active = c == PLC_RT_IDLE_INDEX; /* the idle class stays ready */
     s->started = 0;
     s->cycle++;
 }
@@ -245,14 +256,17 @@ int plc_rt_run_sim(plc_rt *rt, uint64_t n_ticks)
             return PLC_RT_SERVICE;
         }
         releases(rt, t);
-        /* Fixed-priority preemptive dispatch of the CPU time [t, end). */
+        /* Fixed-priority preemptive dispatch of the CPU time [t, end): the
+         * released cyclic classes, then the idle class (index after #8) in
+         * what is left. Releases happen only at ticks, so an idle iteration
+         * never delays a cyclic class. */
         for (;;) {
             unsigned c;
             uint64_t run;
             plc_rt_class_state *s;
-            for (c = 0; c < PLC_RT_CLASSES && !rt->cls[c].active; c++) {
+            for (c = 0; c <= PLC_RT_IDLE_INDEX && !rt->cls[c].active; c++) {
             }
-            if (c == PLC_RT_CLASSES) {
+            if (c > PLC_RT_IDLE_INDEX) {
                 break;
             }
             if (cpu_t >= end) {
@@ -260,11 +274,14 @@ int plc_rt_run_sim(plc_rt *rt, uint64_t n_ticks)
             }
             s = &rt->cls[c];
             if (!s->started) {
-                unsigned low;
-                for (low = c + 1; low < PLC_RT_CLASSES; low++) {
-                    if (rt->cls[low].active && rt->cls[low].started) {
-                        emit(rt, PLC_RT_EV_PREEMPT, low, cpu_t);
-                    }
+                /* the class that had the CPU and has not finished is preempted */
+                if (rt->running >= 0) {
+                    rt->stats[rt->running].preempted++;
+                    emit(rt, PLC_RT_EV_PREEMPT, (unsigned)rt->running, cpu_t);
+                }
+                if (c == PLC_RT_IDLE_INDEX) {
+                    s->release_ns = cpu_t;
+                    s->remaining_ns = s->cost_ns;
                 }
                 s->started = 1;
                 emit(rt, PLC_RT_EV_START, c, cpu_t);
@@ -273,8 +290,11 @@ int plc_rt_run_sim(plc_rt *rt, uint64_t n_ticks)
             run = s->remaining_ns < end - cpu_t ? s->remaining_ns : end - cpu_t;
             s->remaining_ns -= run;
             cpu_t += run;
+            rt->running = (int)c;
             if (s->remaining_ns == 0) {
-                if (!s->violated && cpu_t > class_deadline(s) && violation(rt, c, class_deadline(s))) {
+                rt->running = -1;
+                if (c < PLC_RT_IDLE_INDEX && !s->violated && cpu_t > class_deadline(s)
+                    && violation(rt, c, class_deadline(s))) {
                     return PLC_RT_SERVICE;
                 }
                 class_end(rt, c, cpu_t, s->cost_ns);
@@ -289,6 +309,36 @@ int plc_rt_run_sim(plc_rt *rt, uint64_t n_ticks)
 static uint64_t ts_ns(const struct timespec *ts)
 {
     return (uint64_t)ts->tv_sec * 1000000000u + (uint64_t)ts->tv_nsec;
+}
+
+/* Wall clock: idle iterations until the next tick at wall time `next`.
+ * An iteration starts only while the next tick is farther away than the
+ * longest iteration so far (one host thread cannot preempt it); one that
+ * ends after `next` all the same is counted as late. */
+static int idle_wall(plc_rt *rt, uint64_t base, uint64_t next)
+{
+    plc_rt_class_state *s = &rt->cls[PLC_RT_IDLE_INDEX];
+    plc_rt_class_stats *st = &rt->stats[PLC_RT_IDLE_INDEX];
+    for (;;) {
+        struct timespec c0, c1, w0, w1;
+        if (clock_gettime(CLOCK_MONOTONIC, &w0)) {
+            return 1;
+        }
+        if (ts_ns(&w0) + st->response_ns_max >= next) {
+            return 0;
+        }
+        clock_gettime(CLOCK_THREAD_CPUTIME_ID, &c0);
+        s->release_ns = ts_ns(&w0) - base;
+        s->started = 1;
+        emit(rt, PLC_RT_EV_START, PLC_RT_IDLE_INDEX, s->release_ns);
+        class_run_programs(rt, PLC_RT_IDLE_INDEX);
+        clock_gettime(CLOCK_THREAD_CPUTIME_ID, &c1);
+        clock_gettime(CLOCK_MONOTONIC, &w1);
+        if (ts_ns(&w1) > next) {
+            st->late++;
+        }
+        class_end(rt, PLC_RT_IDLE_INDEX, ts_ns(&w1) - base, ts_ns(&c1) - ts_ns(&c0));
+    }
 }
 
 int plc_rt_run_wall(plc_rt *rt, uint64_t n_ticks)
@@ -351,6 +401,9 @@ int plc_rt_run_wall(plc_rt *rt, uint64_t n_ticks)
         }
         rt->now_ns = t + rt->tick_ns;
         rt->ticks++;
+        if (rt->cls[PLC_RT_IDLE_INDEX].active && idle_wall(rt, base, base + rt->now_ns)) {
+            return PLC_RT_E_CLOCK;
+        }
     }
     return PLC_RT_OK;
 }
@@ -372,6 +425,12 @@ void plc_rt_report(const plc_rt *rt, FILE *out)
                 (unsigned long long)s->violations, (unsigned long long)s->skipped,
                 s->cycles ? (double)s->cpu_ns_total / (double)s->cycles / 1e3 : 0.0,
                 (double)s->cpu_ns_max / 1e3, (double)s->response_ns_max / 1e3);
+    }
+    if (rt->cls[PLC_RT_IDLE_INDEX].active) {
+        const plc_rt_class_stats *s = &rt->stats[PLC_RT_IDLE_INDEX];
+        fprintf(out, "Idle         iterations %llu  preempted %llu  late %llu  cpu mean[us] %.2f  cpu max[us] %.2f\n",
+                (unsigned long long)s->cycles, (unsigned long long)s->preempted, (unsigned long long)s->late,
+                s->cycles ? (double)s->cpu_ns_total / (double)s->cycles / 1e3 : 0.0, (double)s->cpu_ns_max / 1e3);
     }
 }
 

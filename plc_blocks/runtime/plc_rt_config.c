@@ -6,6 +6,14 @@
  *                 idle_task_class, idle_time_us, violation_reaction
  *   [resources]   cyclic_resources
  *   [cyclicN]     duration_us, tolerance_us, sim_cost_us, programs (comma list)
+ *   [idle]        sim_cost_us, programs: the idle task class (no cycle time)
+ *
+ * idle_task_class and idle_time_us are Table 2.3's "Idle time" settings
+ * (the class in whose cycle Automation Runtime reserves time for its
+ * system tasks); they are validated and recorded, not modelled. The
+ * [idle] section is the idle task class that runs user programs in the
+ * CPU time left over; it has no entry in Table 2.3 (Fig. 2.12 puts no
+ * program there).
  *
  * '#' starts a comment. Table 2.3 prints "System tick in us: 0.25"; that is
  * a table error (notes 8.5 [AMBIG]): the tick is derived here as interface
@@ -124,6 +132,11 @@ static int validate(plc_rt_config *cfg, const char *name, char *err, size_t errl
                 (unsigned)cfg->idle_task_class);
         return PLC_RT_E_CONFIG;
     }
+    if (cfg->cls[PLC_RT_IDLE_INDEX].n_programs && cfg->cls[PLC_RT_IDLE_INDEX].sim_cost_us == 0) {
+        plc_rt_set_err(err, errlen, "%s: [idle] has programs but no sim_cost_us (the simulated CPU time of one "
+                "iteration, > 0)", name);
+        return PLC_RT_E_CONFIG;
+    }
     if (cfg->idle_time_us % cfg->tick_us) {
         plc_rt_set_err(err, errlen, "%s: idle_time_us = %u is not a multiple of the system tick", name,
                 (unsigned)cfg->idle_time_us);
@@ -137,7 +150,7 @@ int plc_rt_config_parse(plc_rt_config *cfg, const char *text, const char *name, 
     char line[512];
     const char *p = text;
     int lineno = 0;
-    int section = -1; /* -1 none, 0 timing, 1 resources, 2.. cyclic(section-2) */
+    int section = -1; /* -1 none, 0 timing, 1 resources, 2.. cyclic(section-2), 2 + PLC_RT_IDLE_INDEX idle */
     if (!cfg || !text) {
         plc_rt_set_err(err, errlen, "plc_rt_config_parse: NULL argument");
         return PLC_RT_E_ARG;
@@ -181,11 +194,13 @@ int plc_rt_config_parse(plc_rt_config *cfg, const char *text, const char *name, 
                 section = 0;
             } else if (!strcmp(s, "resources")) {
                 section = 1;
+            } else if (!strcmp(s, "idle")) {
+                section = 2 + PLC_RT_IDLE_INDEX;
             } else if (sscanf(s, "cyclic%u", &k) == 1 && k >= 1 && k <= PLC_RT_CLASSES
                        && strspn(s + 6, "0123456789") == strlen(s + 6)) {
                 section = 2 + (int)k - 1;
             } else {
-                plc_rt_set_err(err, errlen, "%s:%d: unknown section [%s] (timing, resources, cyclic1..cyclic8)",
+                plc_rt_set_err(err, errlen, "%s:%d: unknown section [%s] (timing, resources, cyclic1..cyclic8, idle)",
                         name, lineno, s);
                 return PLC_RT_E_CONFIG;
             }
@@ -239,6 +254,11 @@ int plc_rt_config_parse(plc_rt_config *cfg, const char *text, const char *name, 
             U32_KEY("cyclic_resources", cfg->cyclic_resources)
         } else {
             plc_rt_class_config *k = &cfg->cls[section - 2];
+            if (section == 2 + PLC_RT_IDLE_INDEX && (!strcmp(key, "duration_us") || !strcmp(key, "tolerance_us"))) {
+                plc_rt_set_err(err, errlen, "%s:%d: %s in [idle]: the idle task class has no cycle time", name,
+                        lineno, key);
+                return PLC_RT_E_CONFIG;
+            }
             U32_KEY("duration_us", k->duration_us)
             U32_KEY("tolerance_us", k->tolerance_us)
             U32_KEY("sim_cost_us", k->sim_cost_us)

@@ -1,6 +1,7 @@
 /* Host emulation of the B&R task model (plc_blocks/runtime/plc_rt.h):
  * configuration (Table 2.3), priority scheduling on the simulated clock,
- * the I/O image, _INIT/_EXIT order, cycle-time violations, wall clock. */
+ * the I/O image, _INIT/_EXIT order, cycle-time violations, wall clock,
+ * the idle task class. */
 #include "frac_test.h"
 #include "plc_rt.h"
 
@@ -341,6 +342,273 @@ static void test_service_mode_stops_every_task(void **state)
     assert_string_equal(plc_rt_strerror(42), "unknown");
 }
 
+/* ---- the idle task class ---- */
+static void test_config_idle_section(void **state)
+{
+    plc_rt_config cfg;
+    plc_rt rt;
+    char err[256];
+    (void)state;
+    load(&cfg, "[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\n"
+               "[cyclic1]\nduration_us = 1200\n[idle]\nsim_cost_us = 250\nprograms = Bg, Log\n");
+    assert_int_equal(cfg.cls[PLC_RT_IDLE_INDEX].sim_cost_us, 250);
+    assert_int_equal(cfg.cls[PLC_RT_IDLE_INDEX].n_programs, 2);
+    assert_string_equal(cfg.cls[PLC_RT_IDLE_INDEX].programs[1], "Log");
+    assert_int_equal(cfg.cls[PLC_RT_IDLE_INDEX].duration_us, 0);
+    assert_int_equal(plc_rt_init(&rt, &cfg, NULL, 0, err, sizeof err), PLC_RT_E_PROGRAM);
+    assert_non_null(strstr(err, "[idle]: program 'Bg'"));
+    expect_rejected("[timing]\ninterface_cycle_us = 400\n[idle]\nduration_us = 1200\n",
+                    "bad.cfg:4: duration_us in [idle]: the idle task class has no cycle time");
+    expect_rejected("[timing]\ninterface_cycle_us = 400\n[idle]\ntolerance_us = 100\n", "has no cycle time");
+    expect_rejected("[timing]\ninterface_cycle_us = 400\n[idle]\nprograms = Bg\n",
+                    "[idle] has programs but no sim_cost_us");
+    /* a hand-built configuration is checked as well (the runtime would never leave the idle class) */
+    cfg.cls[PLC_RT_IDLE_INDEX].sim_cost_us = 0;
+    assert_int_equal(plc_rt_init(&rt, &cfg, NULL, 0, err, sizeof err), PLC_RT_E_ARG);
+    assert_non_null(strstr(err, "sim_cost_us > 0"));
+}
+
+/* A background program: counts its calls and publishes the count. */
+typedef struct idle_fixture {
+    int img_count, loc_count;
+    int calls;
+    char order[64];
+    size_t n_order;
+} idle_fixture;
+
+static void bg_init(void *ctx)
+{
+    idle_fixture *f = (idle_fixture *)ctx;
+    f->order[f->n_order++] = 'i';
+}
+
+static void bg_cyclic(void *ctx)
+{
+    idle_fixture *f = (idle_fixture *)ctx;
+    f->loc_count = ++f->calls;
+    if (f->n_order < sizeof f->order - 1) {
+        f->order[f->n_order++] = 'c';
+    }
+}
+
+static void bg_exit(void *ctx)
+{
+    idle_fixture *f = (idle_fixture *)ctx;
+    f->order[f->n_order++] = 'x';
+}
+
+static void fg_init(void *ctx)
+{
+    idle_fixture *f = (idle_fixture *)ctx;
+    f->order[f->n_order++] = 'I';
+}
+
+static void fg_cyclic(void *ctx)
+{
+    idle_fixture *f = (idle_fixture *)ctx;
+    if (f->n_order < sizeof f->order - 1) {
+        f->order[f->n_order++] = 'C';
+    }
+}
+
+static void fg_exit(void *ctx)
+{
+    idle_fixture *f = (idle_fixture *)ctx;
+    f->order[f->n_order++] = 'X';
+}
+
+static void idle_programs(idle_fixture *f, plc_io *out, plc_program *bg, plc_program *fg)
+{
+    memset(f, 0, sizeof *f);
+    out->image = &f->img_count;
+    out->local = &f->loc_count;
+    out->size = sizeof(int);
+    memset(bg, 0, sizeof *bg);
+    bg->name = "Bg"; bg->init = bg_init; bg->cyclic = bg_cyclic; bg->exit = bg_exit; bg->ctx = f;
+    bg->outputs = out; bg->n_outputs = 1;
+    memset(fg, 0, sizeof *fg);
+    fg->name = "Fg"; fg->init = fg_init; fg->cyclic = fg_cyclic; fg->exit = fg_exit; fg->ctx = f;
+}
+
+#define TWO_CLASSES "[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\n" \
+                    "[cyclic1]\nduration_us = 1200\nsim_cost_us = 300\n[cyclic2]\nduration_us = 600\nsim_cost_us = 100\n"
+
+static void test_idle_class_runs_in_leftover_time_and_every_class_preempts_it(void **state)
+{
+    static idle_fixture f;
+    plc_io out;
+    plc_program bg, fg;
+    const plc_program *reg[2];
+    plc_rt_config cfg;
+    plc_rt rt, ref;
+    ev_log log, ref_log;
+    size_t i = 0, j, k;
+    (void)state;
+    idle_programs(&f, &out, &bg, &fg);
+    reg[0] = &bg;
+    reg[1] = &fg;
+    load(&cfg, TWO_CLASSES "[idle]\nsim_cost_us = 250\nprograms = Bg\n");
+    build(&rt, &cfg, reg, 2);
+    memset(&log, 0, sizeof log);
+    rt.trace_hook = record;
+    rt.trace_ctx = &log;
+    assert_int_equal(plc_rt_start(&rt), PLC_RT_OK);
+    assert_int_equal(plc_rt_run_sim(&rt, 24), PLC_RT_OK);
+    expect_event(&log, i++, PLC_RT_EV_RELEASE, 1, 0);
+    expect_event(&log, i++, PLC_RT_EV_RELEASE, 2, 0);
+    expect_event(&log, i++, PLC_RT_EV_START, 1, 0);
+    expect_event(&log, i++, PLC_RT_EV_END, 1, 300);
+    expect_event(&log, i++, PLC_RT_EV_START, 2, 300);
+    expect_event(&log, i++, PLC_RT_EV_END, 2, 400);
+    expect_event(&log, i++, PLC_RT_EV_START, PLC_RT_IDLE, 400);    /* iteration 0 */
+    expect_event(&log, i++, PLC_RT_EV_RELEASE, 2, 600);
+    expect_event(&log, i++, PLC_RT_EV_PREEMPT, PLC_RT_IDLE, 600);  /* 50 us left */
+    expect_event(&log, i++, PLC_RT_EV_START, 2, 600);
+    expect_event(&log, i++, PLC_RT_EV_END, 2, 700);
+    expect_event(&log, i++, PLC_RT_EV_END, PLC_RT_IDLE, 750);
+    expect_event(&log, i++, PLC_RT_EV_START, PLC_RT_IDLE, 750);    /* iteration 1 */
+    expect_event(&log, i++, PLC_RT_EV_END, PLC_RT_IDLE, 1000);
+    expect_event(&log, i++, PLC_RT_EV_START, PLC_RT_IDLE, 1000);   /* iteration 2 */
+    expect_event(&log, i++, PLC_RT_EV_RELEASE, 1, 1200);
+    expect_event(&log, i++, PLC_RT_EV_RELEASE, 2, 1200);
+    expect_event(&log, i++, PLC_RT_EV_PREEMPT, PLC_RT_IDLE, 1200); /* 50 us left */
+    expect_event(&log, i++, PLC_RT_EV_START, 1, 1200);
+    expect_event(&log, i++, PLC_RT_EV_END, 1, 1500);
+    expect_event(&log, i++, PLC_RT_EV_START, 2, 1500);
+    expect_event(&log, i++, PLC_RT_EV_END, 2, 1600);
+    expect_event(&log, i++, PLC_RT_EV_END, PLC_RT_IDLE, 1650);
+    expect_event(&log, i++, PLC_RT_EV_START, PLC_RT_IDLE, 1650);   /* iteration 3 */
+    expect_event(&log, i++, PLC_RT_EV_RELEASE, 2, 1800);
+    expect_event(&log, i++, PLC_RT_EV_PREEMPT, PLC_RT_IDLE, 1800); /* 100 us left */
+    expect_event(&log, i++, PLC_RT_EV_START, 2, 1800);
+    expect_event(&log, i++, PLC_RT_EV_END, 2, 1900);
+    expect_event(&log, i++, PLC_RT_EV_END, PLC_RT_IDLE, 2000);
+    expect_event(&log, i++, PLC_RT_EV_START, PLC_RT_IDLE, 2000);   /* iteration 4 */
+    expect_event(&log, i++, PLC_RT_EV_END, PLC_RT_IDLE, 2250);
+    expect_event(&log, i++, PLC_RT_EV_START, PLC_RT_IDLE, 2250);   /* iteration 5, 100 us left at 2400 */
+    assert_int_equal(log.n, i);
+    /* 2400 us - 2 x 300 - 4 x 100 = 1400 us left over = 5.6 iterations of 250 us */
+    assert_int_equal(rt.stats[PLC_RT_IDLE_INDEX].cycles, 5);
+    assert_int_equal(rt.stats[PLC_RT_IDLE_INDEX].preempted, 3);
+    assert_int_equal(rt.stats[PLC_RT_IDLE_INDEX].cpu_ns_total, 5 * 250 * US);
+    assert_int_equal(rt.stats[PLC_RT_IDLE_INDEX].response_ns_max, 650 * US); /* iteration 2: 1000..1650 */
+    assert_int_equal(rt.stats[PLC_RT_IDLE_INDEX].violations, 0);
+    assert_int_equal(f.calls, 6);
+    /* outputs published at the end of an iteration: 5 ended, the 6th computed 6 */
+    assert_int_equal(f.img_count, 5);
+    assert_int_equal(f.loc_count, 6);
+    /* the cyclic classes see exactly the schedule they have without the idle class */
+    load(&cfg, TWO_CLASSES);
+    build(&ref, &cfg, reg, 2);
+    memset(&ref_log, 0, sizeof ref_log);
+    ref.trace_hook = record;
+    ref.trace_ctx = &ref_log;
+    assert_int_equal(plc_rt_start(&ref), PLC_RT_OK);
+    assert_int_equal(plc_rt_run_sim(&ref, 24), PLC_RT_OK);
+    for (j = 0, k = 0; j < log.n; j++) {
+        if (log.ev[j].cls == PLC_RT_IDLE) {
+            continue;
+        }
+        assert_true(k < ref_log.n);
+        assert_int_equal(log.ev[j].kind, ref_log.ev[k].kind);
+        assert_int_equal(log.ev[j].cls, ref_log.ev[k].cls);
+        assert_int_equal(log.ev[j].t_ns, ref_log.ev[k].t_ns);
+        k++;
+    }
+    assert_int_equal(k, ref_log.n);
+    for (j = 0; j < PLC_RT_CLASSES; j++) {
+        assert_int_equal(rt.stats[j].response_ns_max, ref.stats[j].response_ns_max);
+        assert_int_equal(rt.stats[j].violations, 0);
+    }
+    {
+        char line[256], text[1024] = "";
+        FILE *fp = tmpfile();
+        assert_non_null(fp);
+        plc_rt_report(&rt, fp);
+        rewind(fp);
+        while (fgets(line, sizeof line, fp)) {
+            strncat(text, line, sizeof text - strlen(text) - 1);
+        }
+        fclose(fp);
+        if (!strstr(text, "Idle         iterations 5  preempted 3  late 0  cpu mean[us] 250.00")) {
+            fail_msg("report:\n%s", text);
+        }
+    }
+    plc_rt_stop(&rt);
+    plc_rt_stop(&ref);
+}
+
+static void test_idle_class_runs_last_and_exits_first(void **state)
+{
+    static idle_fixture f;
+    plc_io out;
+    plc_program bg, fg;
+    const plc_program *reg[2];
+    plc_rt_config cfg;
+    plc_rt rt;
+    (void)state;
+    idle_programs(&f, &out, &bg, &fg);
+    reg[0] = &bg;
+    reg[1] = &fg;
+    /* the idle class is configured first in the file and still runs last */
+    load(&cfg, "[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\n"
+               "[idle]\nsim_cost_us = 250\nprograms = Bg\n[cyclic8]\nduration_us = 1200\nsim_cost_us = 300\nprograms = Fg\n");
+    build(&rt, &cfg, reg, 2);
+    assert_int_equal(plc_rt_start(&rt), PLC_RT_OK);
+    /* [0, 1200): Fg 0..300, iterations start at 300, 550, 800, 1050 */
+    assert_int_equal(plc_rt_run_sim(&rt, 12), PLC_RT_OK);
+    plc_rt_stop(&rt);
+    f.order[f.n_order] = '\0';
+    assert_string_equal(f.order, "IiCccccxX");
+    assert_int_equal(rt.stats[PLC_RT_IDLE_INDEX].cycles, 3);
+}
+
+static void test_idle_class_starves_without_violations(void **state)
+{
+    static idle_fixture f;
+    plc_io out;
+    plc_program bg, fg;
+    const plc_program *reg[2];
+    plc_rt_config cfg;
+    plc_rt rt;
+    (void)state;
+    idle_programs(&f, &out, &bg, &fg);
+    reg[0] = &bg;
+    reg[1] = &fg;
+    /* the cyclic classes take every microsecond: the idle class never starts */
+    load(&cfg, "[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\n"
+               "[cyclic1]\nduration_us = 1200\nsim_cost_us = 1200\n[idle]\nsim_cost_us = 100\nprograms = Bg\n");
+    build(&rt, &cfg, reg, 2);
+    assert_int_equal(plc_rt_start(&rt), PLC_RT_OK);
+    assert_int_equal(plc_rt_run_sim(&rt, 120), PLC_RT_OK);
+    assert_int_equal(f.calls, 0);
+    assert_int_equal(rt.stats[PLC_RT_IDLE_INDEX].cycles, 0);
+    assert_int_equal(rt.stats[0].cycles, 10);
+    assert_int_equal(rt.stats[0].violations + rt.stats[PLC_RT_IDLE_INDEX].violations, 0);
+    plc_rt_stop(&rt);
+
+    /* one iteration far longer than any cycle (5 ms of CPU, 900 us left
+     * per 1.2 ms): it spans many cycles, is preempted at each, ends after
+     * 5.6 cycles and is never reported; service mode is not entered */
+    f.calls = 0;
+    load(&cfg, "[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\nviolation_reaction = service\n"
+               "[cyclic1]\nduration_us = 1200\nsim_cost_us = 300\n[idle]\nsim_cost_us = 5000\nprograms = Bg\n");
+    build(&rt, &cfg, reg, 2);
+    assert_int_equal(plc_rt_start(&rt), PLC_RT_OK);
+    assert_int_equal(plc_rt_run_sim(&rt, 120), PLC_RT_OK);
+    assert_false(rt.service);
+    /* 12 ms - 10 x 300 us = 9 ms left = 1.8 iterations; the first runs
+     * from 300 us to 6.8 ms (5 x 900 us, then 500 us after the 6th cycle),
+     * preempted at each of the 5 releases in between, the second from 6.8 ms */
+    assert_int_equal(rt.stats[PLC_RT_IDLE_INDEX].cycles, 1);
+    assert_int_equal(rt.stats[PLC_RT_IDLE_INDEX].response_ns_max, 6500 * US);
+    assert_int_equal(rt.stats[PLC_RT_IDLE_INDEX].preempted, 9);
+    assert_int_equal(f.calls, 2);
+    assert_int_equal(rt.stats[0].violations + rt.stats[PLC_RT_IDLE_INDEX].violations, 0);
+    assert_int_equal(rt.stats[0].response_ns_max, 300 * US);
+    plc_rt_stop(&rt);
+}
+
 /* ---- wall clock ---- */
 static volatile double sink;
 
@@ -406,6 +674,40 @@ static void test_wall_clock_measures_cpu_time_and_detects_overrun(void **state)
     plc_rt_stop(&rt);
 }
 
+static void test_idle_class_fills_the_wall_clock_gaps(void **state)
+{
+    static idle_fixture f;
+    plc_io out;
+    plc_program bg, light;
+    const plc_program *reg[2];
+    plc_rt_config cfg;
+    plc_rt rt;
+    (void)state;
+    idle_programs(&f, &out, &bg, &light);
+    light.name = "Light";
+    light.cyclic = busy_50;
+    light.init = NULL;
+    light.exit = NULL;
+    reg[0] = &bg;
+    reg[1] = &light;
+    load(&cfg, "[timing]\ninterface_cycle_us = 400\nviolation_reaction = continue\n"
+               "[cyclic1]\nduration_us = 1200\nprograms = Light\n[idle]\nsim_cost_us = 100\nprograms = Bg\n");
+    build(&rt, &cfg, reg, 2);
+    assert_int_equal(plc_rt_start(&rt), PLC_RT_OK);
+    assert_int_equal(plc_rt_run_wall(&rt, 100), PLC_RT_OK);
+    /* ticks every 400 us for 40 ms: the cyclic class keeps its releases, the
+     * idle class runs (a cheap iteration fits many times into each gap)
+     * and is never reported as a violation; timing is not asserted */
+    assert_int_equal(rt.stats[0].cycles, 34);
+    assert_true(rt.stats[PLC_RT_IDLE_INDEX].cycles > 0);
+    assert_int_equal(rt.stats[PLC_RT_IDLE_INDEX].cycles, (uint64_t)f.img_count);
+    assert_int_equal(rt.stats[PLC_RT_IDLE_INDEX].violations, 0);
+    assert_int_equal(rt.stats[PLC_RT_IDLE_INDEX].preempted, 0);
+    assert_true(rt.stats[PLC_RT_IDLE_INDEX].late <= rt.stats[PLC_RT_IDLE_INDEX].cycles);
+    plc_rt_report(&rt, stdout);
+    plc_rt_stop(&rt);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -417,7 +719,12 @@ int main(void)
         cmocka_unit_test(test_overrun_is_detected_and_releases_skipped),
         cmocka_unit_test(test_tolerance_delays_the_violation),
         cmocka_unit_test(test_service_mode_stops_every_task),
+        cmocka_unit_test(test_config_idle_section),
+        cmocka_unit_test(test_idle_class_runs_in_leftover_time_and_every_class_preempts_it),
+        cmocka_unit_test(test_idle_class_runs_last_and_exits_first),
+        cmocka_unit_test(test_idle_class_starves_without_violations),
         cmocka_unit_test(test_wall_clock_measures_cpu_time_and_detects_overrun),
+        cmocka_unit_test(test_idle_class_fills_the_wall_clock_gaps),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
