@@ -16,6 +16,8 @@ void hil_drive_params_default(struct hil_drive_params *p)
     p->heartbeat_syncs = 84;
     p->encoder_bits = 20;
     p->velocity_from_encoder = 0;
+    p->deadzone = 0.0;
+    p->gain = 1.0;
 }
 
 static int params_ok(const struct hil_drive_params *p)
@@ -24,7 +26,8 @@ static int params_ok(const struct hil_drive_params *p)
            p->tau_current >= 0.0 && isfinite(p->tau_current) && p->torque_rated > 0.0 &&
            p->torque_peak >= p->torque_rated && isfinite(p->torque_peak) && p->thermal_tau > 0.0 &&
            isfinite(p->thermal_tau) && p->rpdo_timeout >= 1 && p->heartbeat_syncs >= 1 &&
-           p->encoder_bits >= 1 && p->encoder_bits <= 20 && p->velocity_from_encoder <= 1;
+           p->encoder_bits >= 1 && p->encoder_bits <= 20 && p->velocity_from_encoder <= 1 &&
+           p->deadzone >= 0.0 && isfinite(p->deadzone) && p->gain > 0.0 && isfinite(p->gain);
 }
 
 static void heartbeat(struct hil_drive *d, struct hil_out *out)
@@ -122,6 +125,13 @@ static void controlword(struct hil_drive *d, uint16_t cw)
         d->since_rpdo = 0;
 }
 
+/* The torque the shaft receives for the drive torque tau (hil/drive.h, 5.). */
+static double shaft_torque(const struct hil_drive *d, double tau)
+{
+    double a = fabs(tau) <= d->p.deadzone ? 0.0 : tau - copysign(d->p.deadzone, tau);
+    return d->p.gain * a;
+}
+
 static void on_sync(struct hil_drive *d, struct hil_out *out)
 {
     struct hil_can_frame f;
@@ -168,7 +178,7 @@ static void on_sync(struct hil_drive *d, struct hil_out *out)
         c = -lim;
     a = d->p.tau_current > 0.0 ? exp(-d->p.T / d->p.tau_current) : 0.0;
     tau_end = c + (d->tau_act - c) * a;
-    if (hil_co_rig_encode(&f, HIL_COB_RIG_TORQUE, d->tau_act, tau_end) == HIL_OK)
+    if (hil_co_rig_encode(&f, HIL_COB_RIG_TORQUE, shaft_torque(d, d->tau_act), shaft_torque(d, tau_end)) == HIL_OK)
         hil_out_push(out, &f);
     d->tau_act = tau_end;
     d->thermal += (d->p.T / d->p.thermal_tau) * (tau_end * tau_end - d->thermal);

@@ -31,7 +31,8 @@ static const struct key keys[] = {
     D("drive.torque_rated", drive.torque_rated), D("drive.torque_peak", drive.torque_peak),
     D("drive.thermal_tau", drive.thermal_tau), U("drive.rpdo_timeout", drive.rpdo_timeout),
     U("drive.heartbeat_syncs", drive.heartbeat_syncs), U("drive.encoder_bits", drive.encoder_bits),
-    U("drive.velocity_from_encoder", drive.velocity_from_encoder),
+    U("drive.velocity_from_encoder", drive.velocity_from_encoder), D("drive.deadzone", drive.deadzone),
+    D("drive.gain", drive.gain),
     U("imu.reading_cycles", imu.reading_cycles), D("imu.jitter_prob", imu.jitter_prob),
     D("imu.gyro_bias", imu.gyro_bias), D("imu.gyro_noise", imu.gyro_noise),
     D("imu.gyro_quant", imu.gyro_quant), D("imu.acc_bias", imu.acc_bias),
@@ -442,11 +443,12 @@ int hil_rig_meta_begin(const struct hil_rig_config *c, const char *mode, FILE *f
     fprintf(f, "  },\n  \"effects\": {\"drive_delay_cycles\": %u, \"imu_reading_cycles\": %u, "
                "\"imu_jitter_prob\": %.17g, \"imu_noise\": [%.17g, %.17g], \"imu_bias\": [%.17g, %.17g], "
                "\"imu_quant\": [%.17g, %.17g], \"torque_limits\": [%.17g, %.17g], \"frame_loss\": %.17g, "
-               "\"imu_dropout\": [%.17g, %.17g], \"drive_dropout\": [%.17g, %.17g]},\n",
+               "\"imu_dropout\": [%.17g, %.17g], \"drive_dropout\": [%.17g, %.17g], "
+               "\"torque_deadzone\": %.17g, \"torque_gain\": %.17g},\n",
             c->drive.delay, c->imu.reading_cycles, c->imu.jitter_prob, c->imu.gyro_noise,
             c->imu.acc_noise, c->imu.gyro_bias, c->imu.acc_bias, c->imu.gyro_quant, c->imu.acc_quant,
             c->drive.torque_rated, c->drive.torque_peak, c->frame_loss, c->imu_dropout_start,
-            c->imu_dropout_end, c->drive_dropout_start, c->drive_dropout_end);
+            c->imu_dropout_end, c->drive_dropout_start, c->drive_dropout_end, c->drive.deadzone, c->drive.gain);
     return HIL_OK;
 }
 

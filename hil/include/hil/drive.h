@@ -12,7 +12,13 @@
  *      otherwise (i^2 t protection; statusword bit 11 while limiting);
  *   4. runs the current loop, a first-order lag
  *      tau(t) = c + (tau0 - c) exp(-t / tau_current), over the cycle and sends
- *      RIG_TORQUE(tau(t_k), tau(t_{k+1})) to the plant (ZOH on the command).
+ *      RIG_TORQUE(tau(t_k), tau(t_{k+1})) to the plant (ZOH on the command);
+ *   5. the shaft receives gain * dz(tau), dz the torque dead zone of half
+ *      width `deadzone` (dz(x) = 0 for |x| <= deadzone, else x - deadzone
+ *      sgn(x)), applied to both ends of the RIG_TORQUE ramp. Both are effects
+ *      (default gain 1, deadzone 0): a motor torque constant that differs from
+ *      the drive's value and a power-stage dead zone, so the drive's reported
+ *      torque actual (TPDO2) stays tau, without them.
  * Torque is applied only in "operation enabled"; any other state commands 0.
  * No RPDO for rpdo_timeout SYNCs while enabled -> FAULT, EMCY 0x8250.
  * NMT start/stop/pre-op/reset are obeyed; heartbeat every heartbeat_syncs.
@@ -46,6 +52,8 @@ struct hil_drive_params {
     unsigned heartbeat_syncs; /* heartbeat period in SYNCs, >= 1 */
     unsigned encoder_bits; /* encoder resolution 2^bits counts/rev, 1..20 (effect; wire is 2^20) */
     unsigned velocity_from_encoder; /* 1: velocity actual = encoder difference / T (effect) */
+    double deadzone;       /* shaft torque dead zone half width [Nm], >= 0 (effect; 0: off) */
+    double gain;           /* shaft torque / drive torque, > 0 (effect; 1: off) */
 };
 
 struct hil_drive {
@@ -69,7 +77,7 @@ struct hil_drive {
 /* Defaults of the thesis set-up: T 1.2 ms, delay 4, tau_current 0.25 ms
  * (5 current-controller cycles of 50 us), rated 95.7 Nm, peak 251 Nm,
  * thermal_tau 1 s, rpdo_timeout 3, heartbeat every 84 SYNCs (~100 ms),
- * 20-bit encoder, velocity from the shaft. */
+ * 20-bit encoder, velocity from the shaft, gain 1, no dead zone. */
 void hil_drive_params_default(struct hil_drive_params *p);
 
 /* Validates p and resets the node (NMT boot-up -> pre-operational, CiA 402
