@@ -3,11 +3,14 @@
 // poles/zeros or frequency responses, and with --save FILE writes it in the JSON model format.
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "fracdesign/cli.hpp"
+#include "fracdesign/design/riccati.hpp"
 #include "fracdesign/model_json.hpp"
+#include "fracdesign/tables/ptable.hpp"
 
 namespace fracdesign {
 namespace {
@@ -172,10 +175,62 @@ json summarize(const ModelSpec& m, const Args& a, bool print)
     return r;
 }
 
+// --save-plant: the full-order arm (3.103) as the HIL bench's plant table (docs/hil.md, "The arm
+// plant"): input the net torque on the driven side of the gear, outputs C = [theta_M; theta_M';
+// psi_L; psi_L'], continuous (Ac, Bc) and its exact ZOH (Ad, Bd) at step h (c2d_zoh, (7.3)-(7.7)).
+// The tip angle is not a port output of (3.103): psi_L = psi(0) + int_0^L eps_r dz with psi(0) =
+// theta_h (the beam clamped in the hub, u_b^0 = y_a2) and eps_r = dpsi/dz on the flow basis, whose
+// integrals are the column sums of M (3.70) (the effort basis sums to 1). Its derivative must be the
+// port output psi'(L) and the torque must not act on it directly: both are checked here.
+tables::ParamTable arm_plant_table(const ArmModelSpec& s, double h)
+{
+    if (s.options.reduce)
+        throw UsageError("--save-plant: needs the full-order arm (--full); the Krylov-reduced beam has no tip angle");
+    if (!std::isfinite(h) || !(h > 0.0) || h > 0.1) throw UsageError("option --h: must be in (0, 0.1] s");
+    const ArmModel arm = build_arm(s.beam, s.drive, s.options);
+    const StateSpace c = arm.arm.state_space();
+    const Eigen::Index n = c.nx(), N = arm.beam.N;
+    if (n != 4 + 4 * N) throw std::logic_error("--save-plant: the full arm must have 4 + 4 N states");
+    Eigen::MatrixXd C = Eigen::MatrixXd::Zero(4, n);
+    C(0, 0) = 1.0;              // theta_M, drive state 0 (3.35)
+    C.row(1) = c.C.row(0);      // theta_M' = p_M / I_M
+    C(2, 1) = 1.0;              // theta_h = psi(0)
+    C.block(2, 4 + 3 * N, 1, N) = arm.beam.M.colwise().sum();  // + int eps_r dz (beam block eps_r)
+    C.row(3) = c.C.row(2);      // psi'(L) (port output, (3.103))
+    const double scale = C.row(3).cwiseAbs().maxCoeff() + 1.0;
+    const double res = (C.row(2) * c.A - C.row(3)).cwiseAbs().maxCoeff() / scale;
+    const double feed = std::fabs((C.row(2) * c.B.col(0))(0, 0)) / scale;
+    if (!(res < 1e-9) || !(feed < 1e-9))
+        throw std::runtime_error("--save-plant: the tip angle row is not the integral of psi'(L) (residual " +
+                                 std::to_string(res) + ", " + std::to_string(feed) + ")");
+    StateSpace one = c;
+    one.B = c.B.col(0);
+    one.C = C;
+    one.D = Eigen::MatrixXd::Zero(4, 1);
+    one.inputs = {c.inputs[0]};
+    one.outputs = {"theta_M [rad]", "theta_M_dot [rad/s]", "psi_L [rad]", "psi_L_dot [rad/s]"};
+    const StateSpace d = design::c2d_zoh(one, h);
+    tables::ParamTable t;
+    t.name = "arm_plant";
+    t.meta = {{"source", "seed 004 (3.103), full pseudo-spectral arm, fracdesign model arm --save-plant"},
+              {"N", N}, {"h", h}, {"I_M", s.drive.I_M}};
+    Eigen::MatrixXd dims(1, 2);
+    dims << static_cast<double>(n), static_cast<double>(N);
+    t.add("plant_dims", dims, "n states, N collocation points");
+    t.add("h", h, "step of Ad, Bd [s]");
+    t.add("Ad", d.A, "exact ZOH of Ac at h");
+    t.add("Bd", d.B, "exact ZOH of Bc at h; input net driven-side torque [N m]");
+    t.add("C", C, "theta_M [rad], theta_M' [rad/s], psi_L [rad], psi_L' [rad/s]");
+    t.add("Ac", c.A, "continuous");
+    t.add("Bc", one.B, "continuous");
+    t.validate();
+    return t;
+}
+
 int run_model(const std::vector<std::string>& argv)
 {
     Args a(argv, {"json", "full", "undamped"});
-    a.check_known({"json", "model", "save", "save-ss", "modes", "w", "N", "collocation", "L", "r_t", "r_r", "I_M", "full", "shifts",
+    a.check_known({"json", "model", "save", "save-ss", "save-plant", "h", "modes", "w", "N", "collocation", "L", "r_t", "r_r", "I_M", "full", "shifts",
                    "structure", "zeta", "alpha", "gamma", "lambda", "m2", "undamped", "K", "T", "tau"});
     ModelSpec m;
     if (a.has("model")) {
@@ -198,6 +253,17 @@ int run_model(const std::vector<std::string>& argv)
             throw UsageError(std::string("--save-ss: ") + e.what());
         }
     }
+    if (a.has("save-plant")) {
+        const ArmModelSpec* arm = std::get_if<ArmModelSpec>(&m);
+        if (!arm) throw UsageError("--save-plant: only for the arm model");
+        const tables::ParamTable t = arm_plant_table(*arm, a.num("h", 1.2e-3 / 8));
+        const std::vector<std::uint8_t> b = tables::to_binary(t);
+        std::ofstream f(a.str("save-plant"), std::ios::binary);
+        if (!f.write(reinterpret_cast<const char*>(b.data()), static_cast<std::streamsize>(b.size())) || !f.flush())
+            throw std::runtime_error("--save-plant: cannot write '" + a.str("save-plant") + "'");
+    } else if (a.has("h")) {
+        throw UsageError("option --h: only with --save-plant");
+    }
     const bool js = a.has("json");
     const json result = summarize(m, a, !js);
     if (a.has("save")) write_model_file(a.str("save"), m);
@@ -218,6 +284,10 @@ CommandRegistrar reg({"model", "build a seed model and print its frequencies, po
                       "  --model FILE  read a JSON model (docs/model_format.md) instead of parameters\n"
                       "  --save FILE   write the model as JSON\n"
                       "  --save-ss FILE  write its LTI state space (kind statespace; rational models only)\n"
+                      "  --save-plant FILE.bin  arm --full only: the HIL bench's plant table (FRPT): plant_dims (n, N),\n"
+                      "                h, Ad, Bd (exact ZOH at h), C (theta_M, theta_M', psi_L, psi_L'), Ac, Bc;\n"
+                      "                input: net torque on the driven side [N m] (docs/hil.md)\n"
+                      "  --h SECONDS   step of --save-plant (default 1.5e-4 = 1.2 ms / 8)\n"
                       "  --json        machine-readable result {schema, version, model, result}\n",
                       run_model});
 
