@@ -33,6 +33,8 @@ int fracctrl_enter(const fracctrl_block *blk, void *inst, FracFbStateType *fb, B
         *busy = 0;
         *error = 0;
         *status_id = fracSTAT_DISABLED;
+        fb->Steady = 0;
+        fb->Reported = FRACCTRL_UNREPORTED;
         blk->hold(inst, 1);
         return FRACCTRL_HOLD;
     }
@@ -48,6 +50,8 @@ int fracctrl_enter(const fracctrl_block *blk, void *inst, FracFbStateType *fb, B
             fb->ParOk = 0;
         }
     }
+    fb->Steady = fb->ParOk ? FRACCTRL_KEY(1, fb->UpdateOld) : 0;
+    fb->Reported = FRACCTRL_UNREPORTED;
     if (!fb->ParOk) {
         *valid = 0;
         *busy = 0;
@@ -59,9 +63,9 @@ int fracctrl_enter(const fracctrl_block *blk, void *inst, FracFbStateType *fb, B
     return enable_edge ? FRACCTRL_STARTED : FRACCTRL_RUN;
 }
 
-void fracctrl_report(const FracFbStateType *fb, int status, BOOL *valid, BOOL *busy, BOOL *error,
-                     UINT *status_id)
+void fracctrl_report(FracFbStateType *fb, int status, BOOL *valid, BOOL *busy, BOOL *error, UINT *status_id)
 {
+    fb->Reported = status;
     *busy = 1;
     if (status < 0) {
         *valid = 0;

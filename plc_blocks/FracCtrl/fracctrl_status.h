@@ -18,11 +18,22 @@
  *
  * The Enable/Update edges, the parameter check and the outputs while the
  * block does not run are fracctrl_enter's; the block supplies only its
- * parameter load and its own outputs (fracctrl_block). FRACCTRL_STEADY
- * skips fracctrl_enter on the calls where it would change nothing (Enable
- * held, no Update edge, parameters in effect), and FRACCTRL_REPORT sets
- * the outputs of a clean step without a call; both give exactly the
- * outputs and state of the full path.
+ * parameter load and its own outputs (fracctrl_block).
+ *
+ * The per-call interface cost is kept to two compares on the steady path
+ * (the block-call overhead goal of issue 8, tests/bench/bench_plc.sh):
+ * - FRACCTRL_STEADY compares the pins Enable and Update, packed into one
+ *   number, with Fb.Steady, which fracctrl_enter sets when a call with
+ *   those pins would change nothing (Enable held TRUE, Update unchanged,
+ *   parameters in effect); such a call skips fracctrl_enter;
+ * - FRACCTRL_OUTPUTS compares the step's status with Fb.Reported, the
+ *   status the outputs were last set from; when they are equal (and
+ *   nothing else changed the outputs since, which fracctrl_enter records
+ *   by resetting Fb.Reported) the outputs already hold what
+ *   fracctrl_report would write, so nothing is written.
+ * Both give exactly the outputs and state of the full rules
+ * (tests/plc_blocks/test_fracctrl_status.c, for every state and over long
+ * random call sequences). The NaN check stays the libfrac step's.
  */
 #ifndef FRACCTRL_STATUS_H
 #define FRACCTRL_STATUS_H
@@ -79,44 +90,50 @@ UDINT fracctrl_spare_bank(const FracFbStateType *fb, UDINT bank);
  *   FALSE, blk->hold(inst, 0); returns FRACCTRL_HOLD.
  * - else FRACCTRL_STARTED on an Enable edge, FRACCTRL_RUN otherwise
  *   (the outputs are left to the step and fracctrl_report).
+ * Every call sets Fb.Steady and resets Fb.Reported.
  */
 int fracctrl_enter(const fracctrl_block *blk, void *inst, FracFbStateType *fb, BOOL enable, BOOL update,
                    BOOL *valid, BOOL *busy, BOOL *error, UINT *status_id);
 
 /*
- * Nonzero when fracctrl_enter would return FRACCTRL_RUN and change
- * nothing: Enable held TRUE, Update equal to its previous value (the edge
- * memory holds 0 or 1, so no edge and nothing to update), a parameter set
- * in effect. Any other call takes fracctrl_enter.
+ * Fb.Steady after a call: the key of the pins (Enable 1, Update equal to
+ * the edge memory) with which the next call changes nothing, or 0. The +1
+ * keeps every key nonzero, so a zero-initialized instance is not steady.
+ * Pins other than 0/1 never give a key a call can leave in Fb.Steady, so
+ * they take fracctrl_enter.
  */
-#define FRACCTRL_STEADY(fb, enable, update) \
-    ((enable) && (fb)->EnableOld && (fb)->ParOk && (update) == (fb)->UpdateOld)
+#define FRACCTRL_KEY(enable, update) ((UDINT)(enable) + 256u * (UDINT)(update) + 1u)
+
+/* Fb.Reported when the status outputs are not those of a step's status. */
+#define FRACCTRL_UNREPORTED 32767
+
+/*
+ * Nonzero when fracctrl_enter would return FRACCTRL_RUN and change
+ * nothing: Enable exactly TRUE and held, Update equal to its previous
+ * value, a parameter set in effect. Any other call takes fracctrl_enter.
+ */
+#define FRACCTRL_STEADY(fb, enable, update) (FRACCTRL_KEY(enable, update) == (fb)->Steady)
 
 /*
  * Outputs after a libfrac step that returned `status`: an error clears
  * Valid and sets Error with its StatusID (the block's output holds the last
  * finite value, as libfrac guarantees); otherwise Valid is TRUE and
  * StatusID is a pending parameter error (a rejected Update), else the
- * step's warning or fracSTAT_OK. Busy is TRUE.
+ * step's warning or fracSTAT_OK. Busy is TRUE. Records `status` in
+ * Fb.Reported.
  */
-void fracctrl_report(const FracFbStateType *fb, int status, BOOL *valid, BOOL *busy, BOOL *error,
-                     UINT *status_id);
+void fracctrl_report(FracFbStateType *fb, int status, BOOL *valid, BOOL *busy, BOOL *error, UINT *status_id);
 
 /*
- * fracctrl_report on the output pins themselves (lvalues), with the common
- * case (FRAC_OK, no pending parameter error: Valid, Busy, no Error,
- * fracSTAT_OK) set in place.
+ * fracctrl_report on the output pins themselves (lvalues), skipped when
+ * they already hold its result: the same status as the last report, and
+ * no fracctrl_enter since (which resets Fb.Reported).
  */
-#define FRACCTRL_REPORT(fb, status, valid, busy, error, status_id)                                  \
-    do {                                                                                           \
-        if ((status) == FRAC_OK && (fb)->ParStatus == fracSTAT_OK) {                                     \
-            (valid) = 1;                                                                           \
-            (busy) = 1;                                                                            \
-            (error) = 0;                                                                           \
-            (status_id) = fracSTAT_OK;                                                             \
-        } else {                                                                                   \
-            fracctrl_report((fb), (status), &(valid), &(busy), &(error), &(status_id));            \
-        }                                                                                          \
+#define FRACCTRL_REPORT(fb, status, valid, busy, error, status_id)                      \
+    do {                                                                               \
+        if ((status) != (fb)->Reported) {                                              \
+            fracctrl_report((fb), (status), &(valid), &(busy), &(error), &(status_id)); \
+        }                                                                              \
     } while (0)
 
 /*

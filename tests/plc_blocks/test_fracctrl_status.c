@@ -1,7 +1,9 @@
 /* fracctrl_status.h, the PLCopen sequence shared by the FracCtrl bodies:
  * FRACCTRL_ENTER (the steady-state shortcut or fracctrl_enter) gives the
  * outputs and state of the Enable/Update rules (docs/plc_blocks.md) for
- * every input and state, FRACCTRL_OUTPUTS those of fracctrl_report. */
+ * every input and state, FRACCTRL_OUTPUTS those of fracctrl_report, and
+ * the two shortcuts together equal the full rules over long call
+ * sequences. */
 #include "frac_test.h"
 #include "FracCtrl.h"
 #include "fracctrl_status.h"
@@ -122,6 +124,9 @@ static void test_enter_follows_the_enable_update_rules_in_every_state(void **sta
                                 got.Fb.UpdateOld = (BOOL)up_old;
                                 got.Fb.ParOk = (BOOL)par_ok;
                                 got.Fb.ParStatus = par_status[ps];
+                                /* the derived fields as the previous fracctrl_enter left them */
+                                got.Fb.Steady = en_old && par_ok ? FRACCTRL_KEY(1, up_old) : 0;
+                                got.Fb.Reported = FRACCTRL_UNREPORTED;
                                 got.load_status = load_status[ls];
                                 want = got;
                                 if (FRACCTRL_STEADY(&got.Fb, got.Enable, got.Update)) {
@@ -140,8 +145,73 @@ static void test_enter_follows_the_enable_update_rules_in_every_state(void **sta
         }
     }
     assert_int_equal(n, 3 * 3 * 2 * 2 * 2 * 2 * 2);
-    /* Enable 1 or 2 held, Update 0 or 1 held, parameters in effect */
-    assert_int_equal(steady, 2 * 2 * 2 * 2);
+    /* Enable exactly 1 and held, Update 0 or 1 held, parameters in effect
+     * (x 2 parameter statuses, x 2 load statuses, which do not matter) */
+    assert_int_equal(steady, 2 * 2 * 2);
+}
+
+/* The report rules written out once more (fracctrl_report's contract). */
+static void report_rules(struct fake *f, int st)
+{
+    f->Busy = 1;
+    if (st < 0) {
+        f->Valid = 0;
+        f->Error = 1;
+        f->StatusID = fracctrl_status_id(st);
+    } else {
+        f->Valid = 1;
+        f->Error = f->Fb.ParStatus != fracSTAT_OK;
+        f->StatusID = f->Error ? f->Fb.ParStatus : fracctrl_status_id(st);
+    }
+}
+
+static unsigned lcg(unsigned long *x)
+{
+    *x = *x * 1103515245ul + 12345ul;
+    return (unsigned)((*x >> 16) & 0x7FFFu);
+}
+
+/* A block called as the bodies do (FRACCTRL_ENTER, step, FRACCTRL_OUTPUTS)
+ * against the rules, over 20,000 calls with random pins, parameter
+ * checks and step statuses: the steady-path key and the skipped status
+ * writes never make an output or state differ. */
+static void test_steady_shortcuts_equal_the_rules_over_random_sequences(void **state)
+{
+    static const int step_status[3] = {FRAC_OK, FRAC_W_CLAMPED, FRAC_E_NONFINITE};
+    struct fake got, want;
+    unsigned long x = 12345;
+    int k, steady = 0, skipped = 0;
+    (void)state;
+    memset(&got, 0, sizeof got);
+    want = got;
+    for (k = 0; k < 20000; k++) {
+        unsigned r = lcg(&x);
+        int st = step_status[r % 8 < 6 ? 0 : 1 + (int)(r % 2)], run, want_run;
+        BOOL en = (BOOL)(r % 16 == 0 ? 0 : r % 16 == 1 ? 2 : 1);
+        BOOL up = (BOOL)((r / 16) % 16 == 0 ? 2 : (r / 16) % 16 < 13 ? want.Fb.UpdateOld : 1 - want.Fb.UpdateOld);
+        got.Enable = want.Enable = en;
+        got.Update = want.Update = up;
+        got.load_status = want.load_status = (r / 256) % 4 == 0 ? FRAC_E_PARAM : FRAC_OK;
+        steady += FRACCTRL_STEADY(&got.Fb, got.Enable, got.Update) ? 1 : 0;
+        run = FRACCTRL_ENTER(&fake_block, &got);
+        want_run = rules(&want);
+        assert_int_equal(run != 0, want_run != 0);
+        if (run) {
+            skipped += st == got.Fb.Reported;
+            FRACCTRL_OUTPUTS(&got, st);
+            report_rules(&want, st);
+        }
+        if (got.Valid != want.Valid || got.Busy != want.Busy || got.Error != want.Error
+            || got.StatusID != want.StatusID) {
+            fail_msg("call %d (Enable %d Update %d step %d): outputs %d %d %d %u, rules %d %d %d %u", k, en, up, st,
+                     got.Valid, got.Busy, got.Error, got.StatusID, want.Valid, want.Busy, want.Error, want.StatusID);
+        }
+        assert_same(&got, &want);
+    }
+    /* both shortcuts were taken on many calls */
+    print_message("steady calls %d, status writes skipped %d of 20000\n", steady, skipped);
+    assert_true(steady > 5000);
+    assert_true(skipped > 5000);
 }
 
 static void test_enter_says_started_only_on_the_enable_edge(void **state)
@@ -179,6 +249,7 @@ static void test_outputs_match_fracctrl_report(void **state)
             struct fake got, want;
             memset(&got, 0, sizeof got);
             got.Fb.ParStatus = par_status[j];
+            got.Fb.Reported = FRACCTRL_UNREPORTED;
             got.Valid = 7;
             got.Error = 7;
             got.StatusID = 777;
@@ -186,12 +257,17 @@ static void test_outputs_match_fracctrl_report(void **state)
             FRACCTRL_OUTPUTS(&got, status[i]);
             fracctrl_report(&want.Fb, status[i], &want.Valid, &want.Busy, &want.Error, &want.StatusID);
             assert_same(&got, &want);
+            assert_int_equal(got.Fb.Reported, status[i]);
             if (i == 0 && j == 0) {
                 assert_int_equal(got.Valid, 1);
                 assert_int_equal(got.Busy, 1);
                 assert_int_equal(got.Error, 0);
                 assert_int_equal(got.StatusID, fracSTAT_OK);
             }
+            /* reported already: the pins are not written again */
+            got.Valid = 7;
+            FRACCTRL_OUTPUTS(&got, status[i]);
+            assert_int_equal(got.Valid, 7);
         }
     }
 }
@@ -212,6 +288,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_enter_follows_the_enable_update_rules_in_every_state),
+        cmocka_unit_test(test_steady_shortcuts_equal_the_rules_over_random_sequences),
         cmocka_unit_test(test_enter_says_started_only_on_the_enable_edge),
         cmocka_unit_test(test_outputs_match_fracctrl_report),
         cmocka_unit_test(test_spare_bank_is_the_other_one_only_with_a_set_in_effect),
