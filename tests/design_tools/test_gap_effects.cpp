@@ -122,7 +122,7 @@ TEST(GapEffects, input_delay_is_found_in_closed_loop) { expect_found({Effect::in
 TEST(GapEffects, output_delay_is_found_as_a_delay_in_closed_loop)
 {
     const NominalModel m = nominal_from_json(loop_doc(), kTs);
-    const Signals data = record(m, {{Effect::output_delay, {0.03}}});
+    const Signals data = record(m, {{Effect::output_delay, {0.03, 0.03}}});
     const GapResult r = diagnose(m, data, nullptr, GapOptions());
     ASSERT_EQ(r.candidates.front().effects.size(), 1u);
     const Effect top = r.candidates.front().effects[0].kind;

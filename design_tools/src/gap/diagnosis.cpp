@@ -159,11 +159,27 @@ EffectSetup effect_setup(Effect e, const Context& c)
     const size_t ny = c.Sy.size();
     const double big = 1e3;
     switch (e) {
-    case Effect::input_delay:
-    case Effect::output_delay: {
+    case Effect::input_delay: {
         s.spec = {{c.Ts, 0, 1e9, true}};
         const long dmax = std::max<long>(1, std::min<long>(50, long(c.fit_samples / 20)));
         for (long d = 1; d <= dmax; ++d) s.starts.push_back({double(d)});
+        s.screen = true;
+        break;
+    }
+    case Effect::output_delay: {
+        // One delay per compared output (sensors have their own latencies):
+        // the grid holds every output delayed alike and, with several
+        // outputs, each one delayed alone.
+        for (size_t i = 0; i < ny; ++i) s.spec.push_back({c.Ts, 0, 1e9, true});
+        const long dmax = std::max<long>(1, std::min<long>(50, long(c.fit_samples / 20)));
+        for (long d = 1; d <= dmax; ++d) {
+            s.starts.push_back(std::vector<double>(ny, double(d)));
+            for (size_t i = 0; ny > 1 && i < ny; ++i) {
+                std::vector<double> st(ny, 0.0);
+                st[i] = double(d);
+                s.starts.push_back(st);
+            }
+        }
         s.screen = true;
         break;
     }

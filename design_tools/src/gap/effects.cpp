@@ -61,8 +61,8 @@ std::vector<std::string> param_names(Effect e, const std::vector<std::string>& o
         return v;
     };
     switch (e) {
-    case Effect::input_delay:
-    case Effect::output_delay: return {"delay_s"};
+    case Effect::input_delay: return {"delay_s"};
+    case Effect::output_delay: return per_output("delay_s_");
     case Effect::coulomb_friction: return {"Fc", "offset"};
     case Effect::viscous_friction: return {"Fv"};
     case Effect::stribeck_friction: return {"Fc", "Fs", "vs"};
@@ -174,7 +174,8 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     const double Ts = m.Ts, inf = std::numeric_limits<double>::infinity();
 
     // Effect parameters (absent effects leave the nominal unchanged).
-    int din = 0, dout = 0;
+    int din = 0, dout_max = 0;
+    std::vector<int> dout(size_t(ny), 0);
     double Fc = 0, Foff = 0, Fv = 0, Sc = 0, Ss = 0, Svs = 1, bl = -1, dz = 0, sat = inf, fc = 0, alpha = 0.5, gain = 1;
     bool stribeck = false, fractional = false, mode = false;
     double f_hz = 1, zeta = 0.1;
@@ -183,7 +184,13 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
         const std::vector<double>& p = e.params;
         switch (e.kind) {
         case Effect::input_delay: din = std::max(0, int(std::lround(p[0] / Ts))); break;
-        case Effect::output_delay: dout = std::max(0, int(std::lround(p[0] / Ts))); break;
+        case Effect::output_delay:
+            for (int c = 0; c < ncmp; ++c) {
+                const int d = std::max(0, int(std::lround(p[size_t(c)] / Ts)));
+                dout[size_t(s.compared[size_t(c)])] = d;
+                dout_max = std::max(dout_max, d);
+            }
+            break;
         case Effect::coulomb_friction: Fc = p[0]; Foff = p[1]; break;
         case Effect::viscous_friction: Fv = p[0]; break;
         case Effect::stribeck_friction:
@@ -271,11 +278,10 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
                 for (int j = 0; j < nu; ++j) acc += m.D(i, j) * up[size_t(j)];
             ytrue[size_t(i)] = acc + mode_gain[size_t(i)] * eta[1] / mode_w;
         }
-        if (h_out.len == 0) h_out.init(ny, dout + 1, ytrue.data());
+        if (h_out.len == 0) h_out.init(ny, dout_max + 1, ytrue.data());
         h_out.push(ytrue.data());
-        const double* yd = dout > 0 ? h_out.lagged(dout + 1) : ytrue.data();
         for (int i = 0; i < ny; ++i) {
-            double y = yd[i] + offset[size_t(i)];
+            double y = h_out.lagged(dout[size_t(i)] + 1)[i] + offset[size_t(i)];
             if (step[size_t(i)] > 0) y = step[size_t(i)] * std::round(y / step[size_t(i)]);
             ysens[size_t(i)] = y;
         }

@@ -1,0 +1,584 @@
+// bench.cpp - gap-bench: the diagnosis against hidden truth on the HIL rig
+// (bench.hpp; docs/gap.md "gap-bench" gives the set-up and the mapping of each
+// injected effect to the parameter the diagnosis reports).
+#include "fracdesign/gap/bench.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include "fracdesign/io/signal_csv.hpp"
+
+extern "C" {
+#include "hil/rig.h"
+#include "hil/rng.h"
+}
+
+namespace fracdesign {
+namespace gap {
+
+namespace {
+
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// ---- the bench set-up ------------------------------------------------------
+// Rig: the two-mass plant of seed 004 (4.8)-(4.12) with the thesis cycle
+// T = 1.2 ms and torque path delay of 4 cycles, friction off, an ideal current
+// loop (tau_current = 0), one torque limit (rated = peak = 251 Nm, so the i^2t
+// switch-over never acts), one IMU reading per cycle (reading_cycles = 2) and
+// white gyro noise. Controller: this file's PD law on the motor angle and
+// velocity with a two-tone reference (known to the nominal model).
+const double kT = 1.2e-3;
+const unsigned kDelay = 4;
+const double kTorqueLimit = 251.0;
+const double kKp = 1500.0, kKd = 150.0;     // [Nm/rad], [Nm s/rad]
+const double kIM = 160.0 * 160.0 * 2.29e-4; // hil_plant_params_default (seed 004 Table 8.2)
+const double kIL = 1.69e-4 + 0.7221;
+const double kCs = 5.0e4;
+
+// Reference: a smooth start (0.05 s .. 0.35 s, 1 - cos ramp) times two tones,
+// so that the record has velocity reversals, standstill-free motion and
+// accelerations that use a good part of the torque range.
+void reference(double t, double* r, double* rd)
+{
+    const double ts = 0.05, Tr = 0.3, A1 = 0.3, f1 = 0.7, A2 = 0.12, f2 = 1.9, ph = 1.0;
+    double e = 0, ed = 0;
+    if (t >= ts + Tr) {
+        e = 1;
+    } else if (t > ts) {
+        e = 0.5 * (1 - std::cos(M_PI * (t - ts) / Tr));
+        ed = 0.5 * M_PI / Tr * std::sin(M_PI * (t - ts) / Tr);
+    }
+    const double w1 = 2 * M_PI * f1, w2 = 2 * M_PI * f2;
+    const double s = A1 * std::sin(w1 * t) + A2 * (std::sin(w2 * t + ph) - std::sin(ph));
+    const double sd = A1 * w1 * std::cos(w1 * t) + A2 * w2 * std::cos(w2 * t + ph);
+    *r = e * s;
+    *rd = ed * s + e * sd;
+}
+
+int bench_law(void*, const struct hil_ctrl_law_in* in, double* torque, double* ref)
+{
+    double r, rd;
+    reference(in->t, &r, &rd);
+    *ref = r;
+    *torque = kKp * (r - in->theta) + kKd * (rd - in->omega);
+    return 0;
+}
+
+void set_key(hil_rig_config* c, const std::string& k, const std::string& v)
+{
+    if (hil_rig_config_set(c, k.c_str(), v.c_str()) != HIL_OK)
+        throw std::runtime_error("gap-bench: rig key " + k + " = " + v + " refused");
+}
+
+std::string fmt(double x)
+{
+    char b[64];
+    std::snprintf(b, sizeof b, "%.17g", x);
+    return b;
+}
+
+hil_rig_config base_config(const BenchOptions& opt, std::uint64_t seed)
+{
+    hil_rig_config c;
+    hil_rig_config_default(&c);
+    std::snprintf(c.scenario, sizeof c.scenario, "gap-bench");
+    set_key(&c, "T", fmt(kT));
+    set_key(&c, "plant", "twomass");
+    set_key(&c, "duration", fmt(opt.duration));
+    set_key(&c, "plant.substeps", "8");
+    set_key(&c, "plant.friction", "0");
+    set_key(&c, "plant.fric_b0", "0");
+    set_key(&c, "plant.fric_b1", "0");
+    set_key(&c, "drive.delay", std::to_string(kDelay));
+    set_key(&c, "drive.tau_current", "0");
+    set_key(&c, "drive.torque_rated", fmt(kTorqueLimit));
+    set_key(&c, "drive.torque_peak", fmt(kTorqueLimit));
+    set_key(&c, "ctrl.torque_max", fmt(kTorqueLimit));
+    set_key(&c, "imu.reading_cycles", "2");
+    set_key(&c, "imu.gyro_noise", fmt(opt.gyro_noise));
+    set_key(&c, "imu.seed", std::to_string(seed));
+    set_key(&c, "bus_seed", std::to_string(seed ^ 0x9e3779b97f4a7c15ull));
+    return c;
+}
+
+std::uint64_t splitmix(std::uint64_t x)
+{
+    x += 0x9e3779b97f4a7c15ull;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+    return x ^ (x >> 31);
+}
+
+// Frequency of the plant mode the extra inertia adds: the undamped
+// motor - gear spring - link - k_e - I_e chain, the eigenfrequency nearest f_e.
+double chain_mode_hz(double Ie, double fe)
+{
+    const double ke = Ie * std::pow(2 * M_PI * fe, 2);
+    Eigen::Matrix3d M = Eigen::Vector3d(kIM, kIL, Ie).asDiagonal(), K;
+    K << kCs, -kCs, 0, -kCs, kCs + ke, -ke, 0, -ke, ke;
+    const Eigen::Matrix3d Ms = M.inverse().cwiseSqrt();
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(Ms * K * Ms);
+    double best = 0;
+    for (int i = 0; i < 3; ++i) {
+        const double f = std::sqrt(std::max(es.eigenvalues()(i), 0.0)) / (2 * M_PI);
+        if (std::fabs(f - fe) < std::fabs(best - fe)) best = f;
+    }
+    return best;
+}
+
+// The effect of one name with a size drawn from rng.
+TruthEffect draw_effect(const std::string& e, hil_rng* rng, double cmd_peak)
+{
+    auto U = [&](double lo, double hi) { return lo + (hi - lo) * hil_rng_uniform(rng); };
+    TruthEffect t;
+    t.effect = e;
+    if (e == "input_delay") {
+        const int d = 1 + int(hil_rng_u64(rng) % 4);
+        t.rig = {{"drive.delay", std::to_string(kDelay + unsigned(d))}};
+        t.params = {{"delay_s", d * kT}};
+    } else if (e == "output_delay") {
+        // reading_cycles r: a reading every r/2 cycles, sent r/2 cycles after
+        // its sample (the bench's r = 2: every cycle, one cycle late). Its
+        // delay as an LTI map: the extra latency r/2 - 1 plus half the extra
+        // hold period (r/2 - 1)/2 cycles.
+        const int r = 4 + 2 * int(hil_rng_u64(rng) % 3);
+        t.rig = {{"imu.reading_cycles", std::to_string(r)}};
+        t.params = {{"delay_s_imu_rate", 1.5 * (r / 2 - 1) * kT}};
+    } else if (e == "coulomb_friction") {
+        const double b0 = U(3, 10);
+        t.rig = {{"plant.fric_b0", fmt(b0)}};
+        t.params = {{"Fc", b0}};
+    } else if (e == "viscous_friction") {
+        const double b1 = U(1.5, 6);
+        t.rig = {{"plant.fric_b1", fmt(b1)}};
+        t.params = {{"Fv", b1}};
+    } else if (e == "stribeck_friction") {
+        const double b1s = U(3, 7), b2s = b1s * U(1.6, 2.4), vs = U(0.05, 0.2);
+        t.rig = {{"plant.friction", "2"}, {"plant.fric_b1s", fmt(b1s)}, {"plant.fric_b2s", fmt(b2s)},
+                 {"plant.fric_b3s", "0"}, {"plant.fric_v_s", fmt(vs)}, {"plant.fric_delta", "2"}};
+        t.params = {{"Fc", b1s}, {"Fs", b2s}};
+    } else if (e == "backlash") {
+        t.rig = {{"plant.backlash", fmt(U(0.002, 0.008))}};
+    } else if (e == "deadzone") {
+        const double a = U(3, 10);
+        t.rig = {{"drive.deadzone", fmt(a)}};
+        t.params = {{"half_width", a}};
+    } else if (e == "saturation") {
+        const double L = U(0.55, 0.8) * cmd_peak;
+        t.rig = {{"drive.torque_rated", fmt(L)}, {"drive.torque_peak", fmt(L)}};
+        t.params = {{"limit", L}};
+    } else if (e == "fractional_damping") {
+        t.rig = {{"plant.kv_damping", fmt(U(200, 800))}, {"plant.kv_order", fmt(U(0.3, 0.7))}};
+    } else if (e == "unmodelled_mode") {
+        const double Ie = U(0.05, 0.2), fe = U(6, 20), z = U(0.02, 0.08);
+        t.rig = {{"plant.extra_inertia", fmt(Ie)}, {"plant.extra_hz", fmt(fe)}, {"plant.extra_zeta", fmt(z)}};
+        t.params = {{"f_hz", chain_mode_hz(Ie, fe)}};
+    } else if (e == "gain_error") {
+        const double g = hil_rng_uniform(rng) < 0.5 ? U(0.7, 0.88) : U(1.12, 1.4);
+        t.rig = {{"drive.gain", fmt(g)}};
+        t.params = {{"gain", g}};
+    } else if (e == "sensor_offset") {
+        const double o = (hil_rng_uniform(rng) < 0.5 ? -1 : 1) * U(0.02, 0.1);
+        t.rig = {{"imu.gyro_bias", fmt(o)}};
+        t.params = {{"offset_imu_rate", o}};
+    } else if (e == "quantization") {
+        const double q = U(0.02, 0.08);
+        t.rig = {{"imu.gyro_quant", fmt(q)}};
+        t.params = {{"step_imu_rate", q}};
+    } else {
+        throw std::invalid_argument("gap-bench: no rig injection for '" + e + "'");
+    }
+    return t;
+}
+
+bool friction_family(const std::string& e)
+{
+    return e == "coulomb_friction" || e == "viscous_friction" || e == "stribeck_friction";
+}
+
+struct RigRecord {
+    Signals data;
+    double cmd_peak = 0;
+};
+
+RigRecord run_rig(const hil_rig_config& cfg)
+{
+    auto rig = std::make_unique<hil_rig>();
+    if (hil_rig_init(rig.get(), &cfg, nullptr, nullptr) != HIL_OK)
+        throw std::runtime_error("gap-bench: the rig refused the case's configuration");
+    hil_ctrl_set_law(&rig->ctrl, bench_law, nullptr);
+    const long n = long(std::floor(cfg.duration / cfg.ctrl.T + 0.5));
+    RigRecord out;
+    Signals& s = out.data;
+    s.source = "gap-bench rig";
+    s.names = {"ref", "ref_rate", "torque_cmd", "motor_angle", "motor_velocity", "imu_rate", "torque_actual"};
+    s.Ts = cfg.ctrl.T;
+    s.values.resize(n, Eigen::Index(s.names.size()));
+    for (long k = 0; k < n; ++k) {
+        if (hil_rig_cycle(rig.get()) != HIL_OK) throw std::runtime_error("gap-bench: rig cycle failed");
+        const hil_ctrl_signals& g = rig->ctrl.sig;
+        double r, rd;
+        reference(g.t, &r, &rd);
+        s.values.row(k) << g.ref, rd, g.torque_cmd, g.theta, g.omega, g.imu_rate, rig->drive.tau_act;
+        out.cmd_peak = std::max(out.cmd_peak, std::fabs(g.torque_cmd));
+    }
+    return out;
+}
+
+std::string config_text(const hil_rig_config& c)
+{
+    char* buf = nullptr;
+    size_t len = 0;
+    FILE* f = open_memstream(&buf, &len);
+    if (!f) throw std::runtime_error("gap-bench: open_memstream failed");
+    hil_rig_config_write(&c, f);
+    std::fclose(f);
+    std::string s(buf, len);
+    std::free(buf);
+    return s;
+}
+
+nlohmann::json truth_json(const std::vector<TruthEffect>& truth)
+{
+    nlohmann::json a = nlohmann::json::array();
+    for (const TruthEffect& t : truth) {
+        nlohmann::json rig = nlohmann::json::object(), p = nlohmann::json::object();
+        for (const auto& kv : t.rig) rig[kv.first] = kv.second;
+        for (const TruthParam& q : t.params) p[q.name] = q.value;
+        a.push_back({{"effect", t.effect}, {"rig", rig}, {"params", p}});
+    }
+    return a;
+}
+
+double median(std::vector<double> v)
+{
+    if (v.empty()) return kNaN;
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+nlohmann::json num(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+
+}  // namespace
+
+std::vector<std::string> bench_labels()
+{
+    std::vector<std::string> v;
+    for (Effect e : all_effects()) v.push_back(effect_name(e));
+    v.push_back("none");
+    return v;
+}
+
+BenchScore score_bench(const std::vector<CaseOutcome>& cases)
+{
+    BenchScore S;
+    S.labels = bench_labels();
+    const size_t L = S.labels.size();
+    S.confusion.assign(L, std::vector<int>(L, 0));
+    auto index = [&](const std::string& n) {
+        for (size_t i = 0; i < L; ++i)
+            if (S.labels[i] == n) return int(i);
+        throw std::invalid_argument("gap-bench: unknown effect '" + n + "'");
+    };
+    std::vector<double> perr, shrinks;
+    for (const CaseOutcome& c : cases) {
+        CaseScore cs;
+        cs.param_error = kNaN;
+        cs.shrink = c.shrink;
+        cs.top1 = c.verdict.empty() ? "none" : c.verdict.front();
+        for (const TruthEffect& t : c.truth) cs.truth_label += (cs.truth_label.empty() ? "" : "+") + t.effect;
+        if (c.truth.empty()) cs.truth_label = "none";
+        const TruthEffect* found = nullptr;
+        for (const TruthEffect& t : c.truth)
+            if (t.effect == cs.top1) found = &t;
+        cs.correct = c.truth.empty() ? cs.top1 == "none" : found != nullptr;
+        if (c.truth.size() <= 1) S.confusion[size_t(index(cs.truth_label))][size_t(index(cs.top1))] += 1;
+        else {
+            index(cs.top1);
+            S.two_effect_cases += 1;
+            S.two_effect_correct += cs.correct;
+        }
+        S.cases += 1;
+        S.correct += cs.correct;
+        if (found) {
+            shrinks.push_back(c.shrink);
+            if (!found->params.empty() && !c.verdict_params.empty()) {
+                const std::map<std::string, double>& rec = c.verdict_params.front();
+                double sum = 0;
+                int n = 0;
+                for (const TruthParam& p : found->params) {
+                    auto it = rec.find(p.name);
+                    if (it == rec.end() || !std::isfinite(it->second)) {
+                        sum = kNaN;
+                        break;
+                    }
+                    sum += std::fabs(it->second - p.value) / std::fabs(p.value);
+                    ++n;
+                }
+                cs.param_error = n > 0 ? sum / n : kNaN;
+                // A parameter the diagnosis could not report counts as a miss (100 %).
+                perr.push_back(std::isfinite(cs.param_error) ? cs.param_error : 1.0);
+            }
+        }
+        S.per_case.push_back(cs);
+    }
+    S.accuracy = S.cases ? double(S.correct) / S.cases : kNaN;
+    S.median_param_error = median(perr);
+    S.param_cases = int(perr.size());
+    S.median_shrink_found = median(shrinks);
+    S.found_cases = int(shrinks.size());
+    return S;
+}
+
+BenchCase draw_case(const BenchOptions& opt, int id, double cmd_peak)
+{
+    // Effects are drawn in shuffled rounds of all 14 labels (every label
+    // equally often over 14 cases), sizes from the case's own generator.
+    const std::vector<std::string> labels = bench_labels();
+    const int L = int(labels.size()), round = id / L;
+    hil_rng perm;
+    hil_rng_seed(&perm, splitmix(opt.seed * 1000003ull + std::uint64_t(round)));
+    std::vector<int> order(static_cast<size_t>(L));
+    for (int i = 0; i < L; ++i) order[size_t(i)] = i;
+    for (int i = L - 1; i > 0; --i) std::swap(order[size_t(i)], order[size_t(hil_rng_u64(&perm) % std::uint64_t(i + 1))]);
+    BenchCase c;
+    c.id = id;
+    c.seed = splitmix(opt.seed ^ splitmix(std::uint64_t(id) + 1));
+    hil_rng rng;
+    hil_rng_seed(&rng, c.seed);
+    const std::string first = labels[size_t(order[size_t(id % L)])];
+    if (first != "none") {
+        c.truth.push_back(draw_effect(first, &rng, cmd_peak));
+        if (hil_rng_uniform(&rng) < opt.two_effect_prob) {
+            std::string second;
+            do {
+                second = labels[size_t(hil_rng_u64(&rng) % std::uint64_t(L - 1))];
+            } while (second == first || (friction_family(first) && friction_family(second)));
+            c.truth.push_back(draw_effect(second, &rng, cmd_peak));
+        }
+    }
+    hil_rig_config cfg = base_config(opt, c.seed);
+    for (const TruthEffect& t : c.truth)
+        for (const auto& kv : t.rig) set_key(&cfg, kv.first, kv.second);
+    c.scenario = config_text(cfg);
+    return c;
+}
+
+nlohmann::json bench_nominal_doc()
+{
+    // Plant states x = [theta_M, omega_M, psi, psi'] (seed 004 (4.8)-(4.12),
+    // no friction). Over a cycle the drive's torque ramps from its previous
+    // value to the new one (hil/drive.h with tau_current = 0), so the exact
+    // discretisation is first-order hold: x+ = Phi x + (P - R/T) u- + (R/T) u
+    // with P = int_0^T e^{As} ds B, R = int_0^T e^{A(T-s)} B s ds, from the
+    // exponential of [[A, B, 0], [0, 0, 1], [0, 0, 0]] T. Two more states:
+    // the previous torque u- and the link rate one cycle ago (the IMU reading
+    // the controller sees at cycle k was sampled at t_{k-1}).
+    Eigen::Matrix4d A;
+    A << 0, 1, 0, 0, -kCs / kIM, 0, kCs / kIM, 0, 0, 0, 0, 1, kCs / kIL, 0, -kCs / kIL, 0;
+    Eigen::Vector4d B(0, 1 / kIM, 0, 0);
+    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(6, 6);
+    M.topLeftCorner(4, 4) = A;
+    M.block(0, 4, 4, 1) = B;
+    M(4, 5) = 1;
+    const Eigen::MatrixXd E = (M * kT).exp();
+    const Eigen::Matrix4d Phi = E.topLeftCorner(4, 4);
+    const Eigen::Vector4d P = E.block(0, 4, 4, 1), R = E.block(0, 5, 4, 1);
+    Eigen::MatrixXd Ad = Eigen::MatrixXd::Zero(6, 6), Bd = Eigen::MatrixXd::Zero(6, 1);
+    Ad.topLeftCorner(4, 4) = Phi;
+    Ad.block(0, 4, 4, 1) = P - R / kT;
+    Ad(5, 3) = 1;
+    Bd.block(0, 0, 4, 1) = R / kT;
+    Bd(4, 0) = 1;
+    auto rows = [](const Eigen::MatrixXd& X) {
+        nlohmann::json j = nlohmann::json::array();
+        for (Eigen::Index i = 0; i < X.rows(); ++i) {
+            nlohmann::json r = nlohmann::json::array();
+            for (Eigen::Index k = 0; k < X.cols(); ++k) r.push_back(X(i, k));
+            j.push_back(r);
+        }
+        return j;
+    };
+    Eigen::MatrixXd C = Eigen::MatrixXd::Zero(3, 6), D = Eigen::MatrixXd::Zero(3, 1);
+    C(0, 0) = 1;
+    C(1, 1) = 1;
+    C(2, 5) = 1;
+    return {{"schema", "frac.model"},
+            {"version", 1},
+            {"kind", "statespace"},
+            {"name", "gap_bench_twomass"},
+            {"description",
+             "gap-bench nominal: seed 004 two-mass drive (I_M = 160^2 * 2.29e-4, I_L = 0.722269 kg m^2, c_s = 5e4 "
+             "Nm/rad), no friction, first-order hold of the drive torque, IMU one cycle late; the bench PD loop "
+             "with the drive's 4-cycle delay and 251 Nm limit"},
+            {"time", "discrete"},
+            {"Ts", kT},
+            {"states", {"theta_M", "omega_M", "psi", "psi_rate", "torque_prev", "psi_rate_prev"}},
+            {"A", rows(Ad)},
+            {"B", rows(Bd)},
+            {"C", rows(C)},
+            {"D", rows(D)},
+            {"inputs", {"torque_shaft"}},
+            {"outputs", {"motor_angle", "motor_velocity", "imu_rate"}},
+            {"gap",
+             {{"velocity", "motor_velocity"},
+              {"force_input", "torque_shaft"},
+              {"closed_loop",
+               {{"references", {"ref", "ref_rate"}},
+                {"measured", {"motor_angle", "motor_velocity"}},
+                {"controller", {{"time", "discrete"}, {"Ts", kT}, {"D", {{kKp, kKd, -kKp, -kKd}}}}},
+                {"delay_samples", int(kDelay)},
+                {"saturation", kTorqueLimit}}}}}};
+}
+
+double bench_cmd_peak(const BenchOptions& opt) { return run_rig(base_config(opt, splitmix(opt.seed))).cmd_peak; }
+
+CaseRun run_case(const BenchOptions& opt, const BenchCase& c)
+{
+    CaseRun out;
+    out.draw = c;
+    hil_rig_config cfg = base_config(opt, c.seed);
+    for (const TruthEffect& t : c.truth)
+        for (const auto& kv : t.rig) set_key(&cfg, kv.first, kv.second);
+    out.data = run_rig(cfg).data;
+    out.nominal = bench_nominal_doc();
+    const NominalModel m = nominal_from_json(out.nominal, out.data.Ts);
+    GapOptions g;
+    g.outputs = {"motor_velocity", "imu_rate"};
+    g.max_iterations = opt.max_iterations;
+    out.result = diagnose(m, out.data, nullptr, g);
+    out.outcome.truth = c.truth;
+    out.outcome.shrink = out.result.verdict.shrink;
+    for (const EffectInstance& e : out.result.verdict.effects) {
+        out.outcome.verdict.push_back(effect_name(e.kind));
+        const std::vector<std::string> pn = param_names(e.kind, out.result.outputs);
+        std::map<std::string, double> p;
+        for (size_t i = 0; i < pn.size() && i < e.params.size(); ++i) p[pn[i]] = e.params[i];
+        out.outcome.verdict_params.push_back(p);
+    }
+    return out;
+}
+
+namespace {
+
+void write_case_files(const std::filesystem::path& dir, const CaseRun& r)
+{
+    namespace fs = std::filesystem;
+    fs::create_directories(dir);
+    auto put = [&](const std::string& name, const std::string& text) {
+        std::ofstream o(dir / name, std::ios::binary);
+        o << text;
+        o.close();
+        if (!o) throw std::runtime_error("gap-bench: cannot write " + (dir / name).string());
+    };
+    put("scenario.txt", "# gap-bench case " + std::to_string(r.draw.id) + ": rig configuration (the controller is "
+                        "gap-bench's PD law, not a scenario key)\n" + r.draw.scenario);
+    put("nominal.json", r.nominal.dump(1) + "\n");
+    put("truth.json", truth_json(r.draw.truth).dump(2) + "\n");
+    nlohmann::json res = result_json(r.result);
+    put("result.json", res.dump(2) + "\n");
+    io::SignalTable tab;
+    tab.names = r.data.names;
+    for (Eigen::Index k = 0; k < r.data.samples(); ++k) tab.t.push_back(double(k) * r.data.Ts);
+    for (Eigen::Index j = 0; j < r.data.values.cols(); ++j)
+        tab.columns.emplace_back(r.data.values.col(j).data(), r.data.values.col(j).data() + r.data.samples());
+    tab.dt = r.data.Ts;
+    io::write_signal_csv((dir / "signals.csv").string(), tab);
+}
+
+}  // namespace
+
+nlohmann::json run_bench(const BenchOptions& opt, std::ostream* progress)
+{
+    if (opt.cases < 1) throw std::invalid_argument("gap-bench: --cases must be >= 1");
+    if (!(opt.duration >= 0.5 && opt.duration <= 60)) throw std::invalid_argument("gap-bench: --duration must be in [0.5, 60] s");
+    if (!(opt.gyro_noise >= 0 && std::isfinite(opt.gyro_noise))) throw std::invalid_argument("gap-bench: --noise must be >= 0");
+    if (opt.only_case >= opt.cases) throw std::invalid_argument("gap-bench: --replay names a case beyond --cases");
+    const double peak = bench_cmd_peak(opt);
+    std::vector<CaseOutcome> outcomes;
+    nlohmann::json cases = nlohmann::json::array();
+    for (int id = 0; id < opt.cases; ++id) {
+        if (opt.only_case >= 0 && id != opt.only_case) continue;
+        const BenchCase c = draw_case(opt, id, peak);
+        const CaseRun r = run_case(opt, c);
+        outcomes.push_back(r.outcome);
+        if (!opt.out_dir.empty()) {
+            char name[32];
+            std::snprintf(name, sizeof name, "case_%03d", id);
+            write_case_files(std::filesystem::path(opt.out_dir) / name, r);
+        }
+        nlohmann::json vp = nlohmann::json::array();
+        for (size_t i = 0; i < r.outcome.verdict.size(); ++i) {
+            nlohmann::json p = nlohmann::json::object();
+            for (const auto& kv : r.outcome.verdict_params[i]) p[kv.first] = num(kv.second);
+            vp.push_back({{"effect", r.outcome.verdict[i]}, {"params", p}});
+        }
+        nlohmann::json cj = {{"id", id},
+                             {"seed", c.seed},
+                             {"truth", truth_json(c.truth)},
+                             {"verdict", vp},
+                             {"shrink", num(r.outcome.shrink)},
+                             {"gap_before", num(r.result.gap_before_total)},
+                             {"gap_after", num(r.result.verdict.gap)},
+                             {"scenario", c.scenario}};
+        const BenchScore one = score_bench({r.outcome});
+        cj["truth_label"] = one.per_case[0].truth_label;
+        cj["top1"] = one.per_case[0].top1;
+        cj["correct"] = one.per_case[0].correct;
+        cj["param_error"] = num(one.per_case[0].param_error);
+        cases.push_back(cj);
+        if (progress) {
+            char b[256];
+            std::snprintf(b, sizeof b, "  case %3d  %-38s -> %-20s %s  shrink %6.1f %%  param err %s\n", id,
+                          cj["truth_label"].get<std::string>().c_str(), cj["top1"].get<std::string>().c_str(),
+                          one.per_case[0].correct ? "ok  " : "MISS", 100 * r.outcome.shrink,
+                          std::isfinite(one.per_case[0].param_error)
+                              ? (std::to_string(int(std::lround(100 * one.per_case[0].param_error))) + " %").c_str()
+                              : "-");
+            *progress << b << std::flush;
+        }
+    }
+    const BenchScore S = score_bench(outcomes);
+    nlohmann::json conf = nlohmann::json::array();
+    for (const auto& row : S.confusion) conf.push_back(row);
+    return {{"schema", "frac.gap_bench"},
+            {"version", 1},
+            {"seed", opt.seed},
+            {"cases_requested", opt.cases},
+            {"replay", opt.only_case},
+            {"duration_s", opt.duration},
+            {"gyro_noise", opt.gyro_noise},
+            {"two_effect_prob", opt.two_effect_prob},
+            {"cmd_peak_nominal", peak},
+            {"cases", cases},
+            {"score",
+             {{"cases", S.cases},
+              {"correct", S.correct},
+              {"accuracy", num(S.accuracy)},
+              {"two_effect_cases", S.two_effect_cases},
+              {"two_effect_correct", S.two_effect_correct},
+              {"median_param_error", num(S.median_param_error)},
+              {"param_cases", S.param_cases},
+              {"median_shrink_found", num(S.median_shrink_found)},
+              {"found_cases", S.found_cases}}},
+            {"confusion", {{"labels", S.labels}, {"rows_truth_cols_top1", conf}}},
+            {"goals",
+             {{"accuracy_min", 0.9},
+              {"median_param_error_max", 0.1},
+              {"median_shrink_found_min", 0.8},
+              {"accuracy_met", S.accuracy >= 0.9},
+              {"param_error_met", S.median_param_error <= 0.1},
+              {"shrink_met", S.median_shrink_found >= 0.8}}}};
+}
+
+}  // namespace gap
+}  // namespace fracdesign
