@@ -1,9 +1,11 @@
 /* Command-line handling and the reactive loop of the rig executables. */
+#include <limits.h>
 #include <sched.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
 #include <time.h>
+#include <unistd.h>
 #include "app_common.h"
 #ifdef HIL_HAVE_PLC
 #include "plc_law.h"
@@ -21,6 +23,9 @@ static const char common_usage[] =
     "  --scenario FILE     key = value scenario file (see docs/hil.md)\n"
     "  --set KEY=VALUE     override one scenario key (repeatable)\n"
     "  --idle-exit S       exit after S seconds without a frame (default 2)\n"
+    "  --tables DIR        where relative plant.table / ctrl.table paths not found from the\n"
+    "                      current directory are looked up (default: tables/ next to this\n"
+    "                      executable, where the build writes the scenarios' tables)\n"
     "  --rt-priority N     SCHED_FIFO priority 1..99 and locked memory (needs the privilege;\n"
     "                      without it a warning, normal scheduling)\n"
     "  --help              this text\n";
@@ -33,9 +38,22 @@ static void need(int i, int argc, const char *opt)
     }
 }
 
+/* A relative table path that does not exist from the current directory is
+ * taken from dir (if it exists there); the path is rewritten in place. */
+static void resolve_table(char *path, size_t cap, const char *dir)
+{
+    char alt[PATH_MAX + HIL_PLANT_PATH_MAX];
+    if (!path[0] || path[0] == '/' || access(path, F_OK) == 0)
+        return;
+    snprintf(alt, sizeof alt, "%s/%s", dir, path);
+    if (access(alt, F_OK) == 0 && strlen(alt) < cap)
+        memcpy(path, alt, strlen(alt) + 1);
+}
+
 void app_parse(int argc, char **argv, struct app_opts *o, const char *usage)
 {
     int i, line;
+    char tables[PATH_MAX] = "";
     memset(o, 0, sizeof *o);
     o->bus = "socketcan:vcan0";
     o->idle_exit = 2.0;
@@ -95,6 +113,9 @@ void app_parse(int argc, char **argv, struct app_opts *o, const char *usage)
                 perror("--rt-priority (continuing with normal scheduling)");
                 o->rt_priority = 0;
             }
+        } else if (strcmp(a, "--tables") == 0) {
+            need(i, argc, a);
+            snprintf(tables, sizeof tables, "%s", argv[++i]);
         } else if (strcmp(a, "--csv") == 0) {
             need(i, argc, a);
             o->csv = argv[++i];
@@ -114,6 +135,38 @@ void app_parse(int argc, char **argv, struct app_opts *o, const char *usage)
             exit(2);
         }
     }
+    if (!tables[0]) {
+        ssize_t n = readlink("/proc/self/exe", tables, sizeof tables - 8);
+        char *slash;
+        tables[n > 0 ? n : 0] = '\0';
+        slash = strrchr(tables, '/');
+        if (slash)
+            strcpy(slash, "/tables");
+        else
+            strcpy(tables, "tables");
+    }
+    resolve_table(o->cfg.plant_p.table, sizeof o->cfg.plant_p.table, tables);
+    resolve_table(o->cfg.ctrl_table, sizeof o->cfg.ctrl_table, tables);
+}
+
+/* The whole file in a new buffer (kept for the process's life: the law
+ * reads the table at _INIT); exits 2 when it cannot be read. */
+static unsigned char *slurp(const char *path, unsigned long *size)
+{
+    FILE *f = fopen(path, "rb");
+    unsigned char *b = NULL;
+    long n = -1;
+    if (f && fseek(f, 0, SEEK_END) == 0 && (n = ftell(f)) >= 0 && n <= (64L << 20) && fseek(f, 0, SEEK_SET) == 0 &&
+        (b = malloc(n > 0 ? (size_t)n : 1u)) && fread(b, 1, (size_t)n, f) == (size_t)n) {
+        fclose(f);
+        *size = (unsigned long)n;
+        return b;
+    }
+    if (f)
+        fclose(f);
+    free(b);
+    fprintf(stderr, "ctrl.table %s: cannot read the file\n", path);
+    exit(2);
 }
 
 void app_open_bus(struct hil_transport *t, const char *spec)
@@ -186,8 +239,27 @@ void app_setup_law(struct hil_ctrl *c, const struct hil_rig_config *cfg)
     {
         static struct hil_plc_law law;
         char err[256] = "";
-        int st = hil_plc_law_init_exp_a(&law, cfg->ctrl.T, cfg->plant_p.I_M, cfg->plant_p.I_L, cfg->plant_p.c_s,
-                                        err, sizeof err);
+        int st;
+        if (strcmp(cfg->law, "armctrl") == 0) {
+            unsigned long size = 0;
+            unsigned char *table;
+            if (!cfg->ctrl_table[0]) {
+                fprintf(stderr, "ctrl.law = armctrl needs ctrl.table (ArmCtrl's parameter table)\n");
+                exit(2);
+            }
+            table = slurp(cfg->ctrl_table, &size);
+            st = hil_plc_law_init_table(&law, cfg->ctrl.T, table, size, err, sizeof err);
+            if (st == HIL_E_STATE && law.started) {
+                /* the program is in fault: it never enables the torque and
+                 * reports its StatusID (EMCY, meta.json law_status) */
+                fprintf(stderr, "ctrl.law = armctrl: ctrl.table %s: %s; the torque stays disabled\n",
+                        cfg->ctrl_table, err);
+                st = HIL_OK;
+            }
+        } else {
+            st = hil_plc_law_init_exp_a(&law, cfg->ctrl.T, cfg->plant_p.I_M, cfg->plant_p.I_L, cfg->plant_p.c_s, err,
+                                        sizeof err);
+        }
         if (st != HIL_OK) {
             fprintf(stderr, "ctrl.law = %s: %s %s\n", cfg->law, hil_status_str(st), err);
             exit(2);

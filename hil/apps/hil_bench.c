@@ -45,7 +45,8 @@ static int run_lockstep(const struct app_opts *o)
         return 1;
     st = hil_rig_init(&rig, &o->cfg, log, csv);
     if (st != HIL_OK) {
-        fprintf(stderr, "hil_bench: invalid scenario parameters (%s)\n", hil_status_str(st));
+        fprintf(stderr, "hil_bench: invalid scenario parameters (%s)%s%s\n", hil_status_str(st),
+                rig.plant.err[0] ? ": " : "", rig.plant.err);
         return 2;
     }
     app_setup_law(&rig.ctrl, &o->cfg);
@@ -61,11 +62,14 @@ static int run_lockstep(const struct app_opts *o)
         return 1;
     }
     printf("hil_bench: lockstep, %llu cycles (%.3f s simulated) in %.3f s wall (%.1fx real time); "
-           "frames sent %llu, lost %llu, logged %llu; final tip angle %.4f rad (reference %.4f)\n",
+           "frames sent %llu, lost %llu, logged %llu; final tip angle %.4f rad (reference %.4f)%s\n",
            (unsigned long long)rig.st.cycles, rig.st.cycles * o->cfg.ctrl.T, wall,
            wall > 0 ? rig.st.cycles * o->cfg.ctrl.T / wall : 0.0, (unsigned long long)rig.st.frames_sent,
            (unsigned long long)rig.st.frames_lost, (unsigned long long)rig.st.frames_logged,
-           rig.plant.psi, rig.ctrl.sig.ref);
+           rig.plant.psi, rig.ctrl.sig.ref, rig.ctrl.law_status ? "; the law reported a fault" : "");
+    if (rig.ctrl.law_status)
+        printf("hil_bench: law status %u (ArmCtrl StatusID), faults %llu\n", rig.ctrl.law_status,
+               (unsigned long long)rig.ctrl.faults);
     return 0;
 }
 

@@ -1,4 +1,4 @@
-/* hil_plant: the emulated arm (hil/plant.h: the "rigid" test plant or "twomass") as a bus node. */
+/* hil_plant: the emulated arm (hil/plant.h: the "rigid" test plant, "twomass" or the flexible "arm") as a bus node. */
 #include "app_common.h"
 #include "hil/canopen.h"
 #include "hil/plant.h"
@@ -22,18 +22,20 @@ int main(int argc, char **argv)
 {
     struct app_opts o;
     struct hil_transport t;
-    struct hil_plant node;
+    static struct hil_plant node;
     struct hil_out boot;
     int st;
     app_parse(argc, argv, &o,
               "usage: hil_plant [options]\n"
-              "the emulated arm: plant = rigid (a TEST plant) or twomass (seed 004 rbFFC model), from the scenario.\n"
+              "the emulated arm: plant = rigid (a TEST plant), twomass (seed 004 rbFFC model) or arm (the\n"
+              "flexible arm's table, plant.table), from the scenario.\n"
               "Runs until the bus has been idle for --idle-exit seconds, then prints HIL_STATS.\n"
               "  --csv FILE          truth per step: t, tip_angle, tip_velocity, torque_actual\n");
     boot.n = 0;
     st = hil_plant_init(&node, &o.cfg.plant_p);
     if (st != HIL_OK) {
-        fprintf(stderr, "hil_plant: invalid parameters (%s)\n", hil_status_str(st));
+        fprintf(stderr, "hil_plant: invalid parameters (%s)%s%s\n", hil_status_str(st), node.err[0] ? ": " : "",
+                node.err);
         return 2;
     }
     if (o.csv) {

@@ -13,12 +13,45 @@ static const char table_2_3[] =
     "[cyclic1]\nduration_us = 1200\nsim_cost_us = 300\nprograms = ArmCtrl\n"
     "[cyclic2]\nduration_us = 600\nsim_cost_us = 50\nprograms = ImuRead\n";
 
+/* Tip reference of the logs: psi_ref[i] = int_0^{t_i} dpsi_L* (trapezoid). */
+static void integrate_ref(struct hil_plc_law *L)
+{
+    const TrajLUTParType *f = &L->P->Ff;
+    UDINT i;
+    L->psi_ref[0] = 0;
+    for (i = 1; i < f->N && i < ARMCTRL_FF_MAX; i++)
+        L->psi_ref[i] = L->psi_ref[i - 1] +
+                        (frac_real)0.5 * (frac_real)f->Dt * (f->pData[ARMCTRL_FF_DPSI][i - 1] + f->pData[ARMCTRL_FF_DPSI][i]);
+}
+
+/* Registers ArmCtrl (filled by the caller) and ImuRead, starts the runtime
+ * (_INIT). HIL_OK, or HIL_E_STATE when the runtime or ArmCtrl's _INIT refused
+ * (message in err; L stays started in the second case). */
+static int start(struct hil_plc_law *L, char *err, size_t errlen)
+{
+    plc_rt_config cfg;
+    const plc_program *reg[2];
+    imuread_program(&L->m, &L->pm, 1.0f, &L->can_img, &L->imu_img);
+    reg[0] = &L->pa;
+    reg[1] = &L->pm;
+    if (plc_rt_config_parse(&cfg, table_2_3, "table_2_3", err, errlen) != PLC_RT_OK ||
+        plc_rt_init(&L->rt, &cfg, reg, 2, err, errlen) != PLC_RT_OK || plc_rt_start(&L->rt) != PLC_RT_OK)
+        return HIL_E_STATE;
+    L->started = 1;
+    if (L->a.fault) {
+        if (err && errlen)
+            snprintf(err, errlen, "ArmCtrl _INIT refused its parameters (StatusID %u)",
+                     (unsigned)L->a.out.StatusID);
+        return HIL_E_STATE;
+    }
+    integrate_ref(L);
+    return HIL_OK;
+}
+
 int hil_plc_law_init_exp_a(struct hil_plc_law *L, double T, double I_M, double I_L, double c_s, char *err,
                            size_t errlen)
 {
     frac_traj_params tp;
-    plc_rt_config cfg;
-    const plc_program *reg[2];
     int i, ch;
     if (!L || fabs(T - 1.2e-3) > 1e-12 || !(I_M > 0.0) || !(I_L > 0.0) || !(c_s > 0.0) || !isfinite(I_M) ||
         !isfinite(I_L) || !isfinite(c_s))
@@ -69,27 +102,35 @@ int hil_plc_law_init_exp_a(struct hil_plc_law *L, double T, double I_M, double I
     L->par.WdImu = L->par.WdDrive;
     L->par.WdImu.MaxStaleCycles = 3;
     L->par.TorqueLimit = 250.0f;
+    L->P = &L->par;
     armctrl_program(&L->a, &L->pa, &L->par, &L->drive_img, &L->imu_img, &L->ctrl_img);
-    imuread_program(&L->m, &L->pm, 1.0f, &L->can_img, &L->imu_img);
-    reg[0] = &L->pa;
-    reg[1] = &L->pm;
-    if (plc_rt_config_parse(&cfg, table_2_3, "table_2_3", err, errlen) != PLC_RT_OK ||
-        plc_rt_init(&L->rt, &cfg, reg, 2, err, errlen) != PLC_RT_OK || plc_rt_start(&L->rt) != PLC_RT_OK)
-        return HIL_E_STATE;
-    L->started = 1;
-    if (L->a.fault) {
-        if (err && errlen)
-            snprintf(err, errlen, "ArmCtrl _INIT refused its parameters (StatusID %u)",
-                     (unsigned)L->a.out.StatusID);
-        return HIL_E_STATE;
-    }
-    return HIL_OK;
+    return start(L, err, errlen);
 }
+
+int hil_plc_law_init_table(struct hil_plc_law *L, double T, const void *table, unsigned long size, char *err,
+                           size_t errlen)
+{
+    int st;
+    if (!L || !table || fabs(T - 1.2e-3) > 1e-12 || size > 0xFFFFFFFFul)
+        return HIL_E_ARG;
+    memset(L, 0, sizeof *L);
+    L->P = &L->store.par;
+    armctrl_program_table(&L->a, &L->pa, table, (UDINT)size, &L->store, &L->drive_img, &L->imu_img, &L->ctrl_img);
+    st = start(L, err, errlen);
+    if (st == HIL_OK && fabs((double)L->P->CycleTime - T) > 1e-9) {
+        hil_plc_law_stop(L);
+        if (err && errlen)
+            snprintf(err, errlen, "the table's ts = %g s is not the bus cycle T = %g s", (double)L->P->CycleTime, T);
+        return HIL_E_ARG;
+    }
+    return st;
+}
+
+unsigned hil_plc_law_status(const struct hil_plc_law *L) { return L ? (unsigned)L->a.out.StatusID : 0u; }
 
 int hil_plc_law_step(void *ctx, const struct hil_ctrl_law_in *in, double *torque, double *ref)
 {
     struct hil_plc_law *L = (struct hil_plc_law *)ctx;
-    frac_real d[5];
     if (!L || !in || !torque || !ref || !L->started)
         return HIL_E_ARG;
     L->drive_img.MotorAngle = (REAL)in->theta;
@@ -101,10 +142,22 @@ int hil_plc_law_step(void *ctx, const struct hil_ctrl_law_in *in, double *torque
     L->can_img.FrameCounter = (UDINT)in->imu_readings;
     plc_rt_run_sim(&L->rt, 12);
     *torque = L->ctrl_img.TorqueEnable ? (double)L->ctrl_img.TorqueSetpoint : 0.0;
-    frac_traj_eval(&L->traj, (frac_real)(L->ctrl_img.Counter * (double)L->par.CycleTime), d);
-    *ref = (double)d[0];
+    *ref = 0.0;
+    if (!L->a.fault) {
+        const TrajLUTParType *f = &L->P->Ff;
+        double s = ((double)L->ctrl_img.Counter * (double)L->P->CycleTime - (double)f->T0) / (double)f->Dt;
+        double last = (double)(f->N - 1);
+        if (s <= 0.0)
+            *ref = (double)L->psi_ref[0];
+        else if (s >= last)
+            *ref = (double)L->psi_ref[f->N - 1];
+        else {
+            UDINT i = (UDINT)s;
+            *ref = (double)L->psi_ref[i] + (s - (double)i) * (double)(L->psi_ref[i + 1] - L->psi_ref[i]);
+        }
+    }
     if (L->ctrl_img.Error)
-        return -1;
+        return L->ctrl_img.StatusID ? -(int)L->ctrl_img.StatusID : -1;
     return HIL_OK;
 }
 

@@ -18,8 +18,20 @@
  * design model (I_M, I_L, c_s given), PD gains Kp 320 Nm/rad, Kd 200 Nm s/rad
  * and linear friction compensation b1 3.04, b0 7.684, k 60 (Table 8.6).
  * Drive watchdog: 2 stale cycles; its fault ramp 25000 Nm/s takes the 250 Nm
- * limit to 0 in 10 ms. The law reports a fault (negative return) while the
- * program's published Error is set (a block or a watchdog in fault). */
+ * limit to 0 in 10 ms. The law reports a fault (negative return: minus the
+ * program's StatusID) while the program's published Error is set (a block or
+ * a watchdog in fault).
+ *
+ * Any variant from a table (ctrl.law = armctrl, ctrl.table = FILE): ArmCtrl's
+ * parameter table (plc_blocks ArmCtrl.h, armctrl_program_table: the layout
+ * above armctrl_params_from_table; `fracdesign armctrl --exp A|B|C|D` writes
+ * it), validated by ParTable and loaded at _INIT. A table that fails leaves
+ * the program in fault: the torque is never enabled and every cycle reports
+ * the StatusID.
+ *
+ * The reference *ref (for the logs only) is the tip angle of the feedforward,
+ * the running trapezoidal integral of the table's dpsi_L* row, at the table
+ * time of the run-time counter. */
 #ifndef HIL_PLC_LAW_H
 #define HIL_PLC_LAW_H
 #include "ArmCtrl.h"
@@ -42,6 +54,9 @@ struct hil_plc_law {
     imuread_outputs imu_img;
     frac_traj traj;
     frac_real ff[ARMCTRL_FF_N][HIL_PLC_FF_SAMPLES];
+    armctrl_table_storage store;   /* table variant: the values ArmCtrl's _INIT copies */
+    const armctrl_params *P;       /* the parameters in use (par or store.par) */
+    frac_real psi_ref[ARMCTRL_FF_MAX]; /* integral of the dpsi_L* row, per table sample */
     int started;
 };
 
@@ -51,6 +66,19 @@ struct hil_plc_law {
  * its configuration; message in err). */
 int hil_plc_law_init_exp_a(struct hil_plc_law *L, double T, double I_M, double I_L, double c_s, char *err,
                            size_t errlen);
+
+/* Any variant from ArmCtrl's parameter table (size bytes at table, which must
+ * outlive the law) for cycle T = 1.2 ms; starts the runtime. Returns HIL_OK;
+ * HIL_E_ARG (T not 1.2 ms, NULL, or the table's "ts" is not T); HIL_E_STATE
+ * with the message in err: either the runtime refused its configuration
+ * (L not started), or ArmCtrl's _INIT refused the table - then L is started
+ * and usable as a law that never enables the torque and returns minus the
+ * StatusID every cycle. */
+int hil_plc_law_init_table(struct hil_plc_law *L, double T, const void *table, unsigned long size, char *err,
+                           size_t errlen);
+
+/* ArmCtrl's StatusID (0: no error). */
+unsigned hil_plc_law_status(const struct hil_plc_law *L);
 
 /* The hil_ctrl_law callback; ctx is the struct hil_plc_law. */
 int hil_plc_law_step(void *ctx, const struct hil_ctrl_law_in *in, double *torque, double *ref);

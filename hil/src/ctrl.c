@@ -50,16 +50,19 @@ void hil_ctrl_reference(const struct hil_ctrl_params *p, double t, double *r, do
     }
 }
 
-static void send_emcy(struct hil_ctrl *c, uint16_t code, struct hil_out *out)
+static void send_emcy_info(struct hil_ctrl *c, uint16_t code, unsigned info, struct hil_out *out)
 {
     struct hil_emcy e;
     struct hil_can_frame f;
     memset(&e, 0, sizeof e);
     e.code = code;
     e.error_register = code ? 0x01 : 0x00;
+    hil_put_u16(e.info, (uint16_t)info);
     if (hil_co_emcy_encode(&f, HIL_NODE_CTRL, &e) == HIL_OK && hil_out_push(out, &f) == HIL_OK)
         c->emcy_sent++;
 }
+
+static void send_emcy(struct hil_ctrl *c, uint16_t code, struct hil_out *out) { send_emcy_info(c, code, 0, out); }
 
 static double clamp(double x, double m) { return x > m ? m : (x < -m ? -m : x); }
 
@@ -125,9 +128,11 @@ static void run_law(struct hil_ctrl *c, struct hil_out *out)
         in.enabled = enabled;
         ref = 0.0;
         st = c->law(c->law_ctx, &in, &u, &ref);
+        if (st < 0)
+            c->law_status = st < -65535 ? 65535u : (unsigned)-st;
         if (st < 0 && !c->fault) {
             c->faults++;
-            send_emcy(c, HIL_EMCY_SENSOR, out);
+            send_emcy_info(c, HIL_EMCY_SENSOR, c->law_status, out);
         } else if (st >= 0 && c->fault) {
             send_emcy(c, HIL_EMCY_NO_ERROR, out);
         }

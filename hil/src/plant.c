@@ -1,6 +1,10 @@
-/* The rig's plants, "rigid" and "twomass" (hil/plant.h). */
+/* The rig's plants, "rigid", "twomass" and "arm" (hil/plant.h). */
 #include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include "frac/ptable.h"
 #include "hil/canopen.h"
 #include "hil/plant.h"
 
@@ -28,11 +32,166 @@ void hil_plant_params_default(struct hil_plant_params *p)
 
 static int pos(double x) { return isfinite(x) && x > 0.0; }
 
+static int refuse(struct hil_plant *pl, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(pl->err, sizeof pl->err, fmt, ap);
+    va_end(ap);
+    return HIL_E_ARG;
+}
+
+/* Reads the whole file (at most HIL_PLANT_TABLE_MAX bytes) into a new buffer. */
+static unsigned char *read_file(const char *path, unsigned long *size)
+{
+    FILE *f = fopen(path, "rb");
+    unsigned char *b;
+    long n;
+    if (!f)
+        return NULL;
+    if (fseek(f, 0, SEEK_END) != 0 || (n = ftell(f)) < 0 || (unsigned long)n > HIL_PLANT_TABLE_MAX ||
+        fseek(f, 0, SEEK_SET) != 0 || !(b = (unsigned char *)malloc(n > 0 ? (size_t)n : 1u))) {
+        fclose(f);
+        return NULL;
+    }
+    if (fread(b, 1, (size_t)n, f) != (size_t)n) {
+        free(b);
+        fclose(f);
+        return NULL;
+    }
+    fclose(f);
+    *size = (unsigned long)n;
+    return b;
+}
+
+/* Entry `name` of exactly rows x cols into dst (double); the message names
+ * the entry and its dimensions when they differ. */
+static int table_get(struct hil_plant *pl, const frac_ptable *t, const char *name, unsigned rows, unsigned cols,
+                     frac_real *tmp, double *dst)
+{
+    frac_ptable_entry e;
+    unsigned long i;
+    if (frac_ptable_find(t, name, &e) != FRAC_OK)
+        return refuse(pl, "plant.table %s: entry '%s' missing", pl->p.table, name);
+    if (e.rows != rows || e.cols != cols)
+        return refuse(pl, "plant.table %s: entry '%s' is %u x %u, expected %u x %u", pl->p.table, name, e.rows,
+                      e.cols, rows, cols);
+    if (frac_ptable_get(t, name, rows, cols, tmp) != FRAC_OK)
+        return refuse(pl, "plant.table %s: entry '%s' unreadable", pl->p.table, name);
+    for (i = 0; i < (unsigned long)rows * cols; i++)
+        dst[i] = (double)tmp[i];
+    return HIL_OK;
+}
+
+/* Loads the arm plant table (hil/plant.h, docs/hil.md) into pl. */
+static int load_arm(struct hil_plant *pl)
+{
+    unsigned long size = 0;
+    unsigned char *bytes;
+    frac_ptable t;
+    frac_real *tmp;
+    double v[2], *Ac;
+    unsigned n, i, j;
+    double half = 0.5 * pl->p.T, m;
+    int st;
+    if (!pl->p.table[0])
+        return refuse(pl, "plant = arm needs plant.table (fracdesign model arm --full --save-plant FILE)");
+    bytes = read_file(pl->p.table, &size);
+    if (!bytes)
+        return refuse(pl, "plant.table %s: cannot read the file (missing, unreadable or larger than %u bytes)",
+                      pl->p.table, HIL_PLANT_TABLE_MAX);
+    st = frac_ptable_open(&t, bytes, size);
+    if (st != FRAC_OK) {
+        char ename[FRAC_PTABLE_NAME_LEN + 1] = "";
+        if (t.fail_entry >= 0 &&
+            FRAC_PTABLE_HEADER_SIZE + (unsigned long)(t.fail_entry + 1) * FRAC_PTABLE_ENTRY_SIZE <= size)
+            memcpy(ename, bytes + FRAC_PTABLE_HEADER_SIZE + (unsigned long)t.fail_entry * FRAC_PTABLE_ENTRY_SIZE,
+                   FRAC_PTABLE_NAME_LEN);
+        ename[FRAC_PTABLE_NAME_LEN] = '\0';
+        free(bytes);
+        if (t.fail_entry >= 0)
+            return refuse(pl, "plant.table %s: %s (field %s of entry %ld '%s')", pl->p.table, frac_status_str(st),
+                          t.fail_field, t.fail_entry, ename);
+        return refuse(pl, "plant.table %s: %s (field %s)", pl->p.table, frac_status_str(st), t.fail_field);
+    }
+    tmp = (frac_real *)malloc(sizeof(frac_real) * HIL_PLANT_ARM_NMAX * HIL_PLANT_ARM_NMAX);
+    Ac = (double *)malloc(sizeof(double) * HIL_PLANT_ARM_NMAX * HIL_PLANT_ARM_NMAX);
+    st = !tmp || !Ac ? refuse(pl, "plant.table %s: out of memory", pl->p.table) : HIL_OK;
+    if (st == HIL_OK && (st = table_get(pl, &t, "plant_dims", 1, 2, tmp, v)) == HIL_OK &&
+        (v[0] != floor(v[0]) || v[1] != floor(v[1]) || v[1] < 2 || v[0] != 4.0 + 4.0 * v[1] ||
+         v[0] > HIL_PLANT_ARM_NMAX))
+        st = refuse(pl, "plant.table %s: plant_dims (%g, %g): want n = 4 + 4 N, N >= 2, n <= %d", pl->p.table, v[0],
+                    v[1], HIL_PLANT_ARM_NMAX);
+    n = st == HIL_OK ? (unsigned)v[0] : 0;
+    if (st == HIL_OK && (st = table_get(pl, &t, "h", 1, 1, tmp, v)) == HIL_OK) {
+        m = floor(half / v[0] + 0.5);
+        if (!(v[0] > 0.0) || m < 1.0 || m > 1000.0 || fabs(m * v[0] - half) > 1e-9 * half)
+            st = refuse(pl, "plant.table %s: h = %g s does not divide the half cycle T/2 = %g s", pl->p.table, v[0],
+                        half);
+        pl->ah = v[0];
+        pl->asub = (unsigned)m;
+    }
+    if (st == HIL_OK)
+        st = table_get(pl, &t, "Ad", n, n, tmp, pl->Ad);
+    if (st == HIL_OK)
+        st = table_get(pl, &t, "Bd", n, 1, tmp, pl->Bd);
+    if (st == HIL_OK)
+        st = table_get(pl, &t, "C", 4, n, tmp, pl->C);
+    if (st == HIL_OK)
+        st = table_get(pl, &t, "Ac", n, n, tmp, Ac);
+    if (st == HIL_OK)
+        st = table_get(pl, &t, "Bc", n, 1, tmp, pl->ay);
+    if (st == HIL_OK) {
+        pl->an = n;
+        pl->aN = (unsigned)(n - 4) / 4;
+        pl->acc_b = 0.0;
+        for (j = 0; j < n; j++) {
+            double a = 0.0;
+            for (i = 0; i < n; i++)
+                a += pl->C[3 * n + i] * Ac[i * n + j];
+            pl->acc_row[j] = a;
+            pl->acc_b += pl->C[3 * n + j] * pl->ay[j];
+            pl->ay[j] = 0.0;
+        }
+    }
+    free(tmp);
+    free(Ac);
+    free(bytes);
+    return st;
+}
+
 int hil_plant_init(struct hil_plant *pl, const struct hil_plant_params *p)
 {
     frac_friction fr;
+    int st;
+    if (pl)
+        pl->err[0] = '\0';
     if (!pl || !p || !pos(p->T) || !pos(p->L) || p->substeps < 1 || p->substeps > 1000)
         return HIL_E_ARG;
+    if (p->model == HIL_PLANT_ARM) {
+        const char *what = p->backlash != 0.0        ? "plant.backlash"
+                           : p->extra_inertia != 0.0 ? "plant.extra_inertia (extra mode)"
+                           : p->kv_damping != 0.0    ? "plant.kv_damping (Kelvin-Voigt)"
+                                                     : NULL;
+        if (what)
+            return refuse(pl, "plant = arm does not model %s (a twomass effect); set it to 0 or use plant = twomass",
+                          what);
+        if (frac_friction_init(&fr, &p->friction) != FRAC_OK)
+            return refuse(pl, "plant = arm: the friction parameters (plant.friction, plant.fric_*) are invalid");
+        if (!memchr(p->table, '\0', sizeof p->table))
+            return refuse(pl, "plant.table: path too long");
+        memset(pl, 0, sizeof *pl);
+        pl->p = *p;
+        pl->fric = fr;
+        st = load_arm(pl);
+        if (st != HIL_OK) {
+            char keep[sizeof pl->err];
+            memcpy(keep, pl->err, sizeof keep);
+            memset(pl, 0, sizeof *pl);
+            memcpy(pl->err, keep, sizeof keep);
+        }
+        return st;
+    }
     if (p->model == HIL_PLANT_RIGID) {
         if (!pos(p->J) || !(p->b >= 0.0) || !isfinite(p->b))
             return HIL_E_ARG;
@@ -127,6 +286,44 @@ static void rk4(struct hil_plant *pl, double h, double tau0, double slope, unsig
     pl->psi_dd = k1[3] + k1[5];
 }
 
+/* Arm: the table's ZOH steps over [0, T/2] with torque tau(s) = tau0 + slope * s
+ * held at its value in the middle of each step. */
+static void arm_half(struct hil_plant *pl, double tau0, double slope)
+{
+    const unsigned n = pl->an;
+    double *x = pl->ax, *y = pl->ay, u = 0.0, h = pl->ah;
+    unsigned k, i, j;
+    for (k = 0; k < pl->asub; k++) {
+        frac_real tf = 0;
+        double w = 0.0;
+        for (j = 0; j < n; j++)
+            w += pl->C[n + j] * x[j];
+        frac_friction_eval(&pl->fric, (frac_real)w, &tf);
+        u = tau0 + slope * ((double)k + 0.5) * h - (double)tf;
+        for (i = 0; i < n; i++) {
+            const double *a = pl->Ad + (size_t)i * n;
+            double acc = pl->Bd[i] * u;
+            for (j = 0; j < n; j++)
+                acc += a[j] * x[j];
+            y[i] = acc;
+        }
+        memcpy(x, y, n * sizeof *x);
+    }
+    {
+        double o[4] = {0.0, 0.0, 0.0, 0.0}, acc = pl->acc_b * u;
+        for (i = 0; i < 4; i++)
+            for (j = 0; j < n; j++)
+                o[i] += pl->C[i * n + j] * x[j];
+        for (j = 0; j < n; j++)
+            acc += pl->acc_row[j] * x[j];
+        pl->theta = o[0];
+        pl->omega = o[1];
+        pl->psi = o[2];
+        pl->psi_d = o[3];
+        pl->psi_dd = acc;
+    }
+}
+
 static void emit(uint32_t cob, double a, double b, struct hil_out *out)
 {
     struct hil_can_frame f;
@@ -155,7 +352,10 @@ int hil_plant_on_frame(struct hil_plant *pl, const struct hil_can_frame *f, stru
     h = 0.5 * pl->p.T;
     slope = (tau1 - tau0) / pl->p.T;
     for (half = 0; half < 2; half++) {
-        rk4(pl, h, tau0 + slope * h * half, slope, pl->p.substeps);
+        if (pl->p.model == HIL_PLANT_ARM)
+            arm_half(pl, tau0 + slope * h * half, slope);
+        else
+            rk4(pl, h, tau0 + slope * h * half, slope, pl->p.substeps);
         pl->t += h;
         emit(HIL_COB_RIG_TIPPOS, pl->psi, -pl->p.L * pl->psi_d * pl->psi_d, out);
         emit(HIL_COB_RIG_TIP, pl->psi_d, pl->p.L * pl->psi_dd, out);

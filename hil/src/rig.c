@@ -81,15 +81,25 @@ int hil_rig_config_set(struct hil_rig_config *c, const char *key, const char *va
             c->plant_p.model = HIL_PLANT_RIGID;
         else if (strcmp(value, "twomass") == 0)
             c->plant_p.model = HIL_PLANT_TWOMASS;
+        else if (strcmp(value, "arm") == 0)
+            c->plant_p.model = HIL_PLANT_ARM;
         else
             return HIL_E_FORMAT;
         strcpy(c->plant, value);
         return HIL_OK;
     }
     if (strcmp(key, "ctrl.law") == 0) {
-        if (strcmp(value, "pd") != 0 && strcmp(value, "armctrl_a") != 0)
+        if (strcmp(value, "pd") != 0 && strcmp(value, "armctrl_a") != 0 && strcmp(value, "armctrl") != 0)
             return HIL_E_FORMAT;
         strcpy(c->law, value);
+        return HIL_OK;
+    }
+    if (strcmp(key, "plant.table") == 0 || strcmp(key, "ctrl.table") == 0) {
+        /* a file path: not empty, no '#' (comment) and fits the field */
+        char *dst = key[0] == 'p' ? c->plant_p.table : c->ctrl_table;
+        if (!*value || strchr(value, '#') || strlen(value) >= HIL_PLANT_PATH_MAX)
+            return HIL_E_FORMAT;
+        strcpy(dst, value);
         return HIL_OK;
     }
     if (strcmp(key, "T") == 0) {
@@ -425,6 +435,11 @@ int hil_rig_meta_begin(const struct hil_rig_config *c, const char *mode, FILE *f
             (unsigned long long)c->imu.seed);
     fprintf(f, "  \"parameters\": {\n    \"T\": %.17g,\n    \"plant_name\": \"%s\",\n    \"ctrl.law\": \"%s\",\n",
             c->ctrl.T, c->plant, c->law);
+    fprintf(f, "    \"plant.table\": ");
+    json_str(f, c->plant_p.table);
+    fprintf(f, ",\n    \"ctrl.table\": ");
+    json_str(f, c->ctrl_table);
+    fprintf(f, ",\n");
     for (i = 0; i < NKEYS; i++) {
         const char *p = (const char *)c + keys[i].off;
         fprintf(f, "    \"%s\": ", keys[i].name);
@@ -458,6 +473,10 @@ int hil_rig_config_write(const struct hil_rig_config *c, FILE *f)
     if (!c || !f)
         return HIL_E_ARG;
     fprintf(f, "T = %.17g\nplant = %s\nctrl.law = %s\n", c->ctrl.T, c->plant, c->law);
+    if (c->plant_p.table[0])
+        fprintf(f, "plant.table = %s\n", c->plant_p.table);
+    if (c->ctrl_table[0])
+        fprintf(f, "ctrl.table = %s\n", c->ctrl_table);
     for (i = 0; i < NKEYS; i++) {
         const char *p = (const char *)c + keys[i].off;
         fprintf(f, "%s = ", keys[i].name);
@@ -489,13 +508,14 @@ int hil_rig_write_meta(const struct hil_rig *r, FILE *f, double wall_s)
             r->cfg.drive_busoff_start, r->cfg.drive_busoff_end, (unsigned long long)r->st.bus_off_episodes);
     fprintf(f, "  \"counts\": {\"cycles\": %llu, \"frames_sent\": %llu, \"frames_lost\": %llu, "
                "\"frames_delivered\": %llu, \"frames_logged\": %llu, \"injected\": %llu, "
-               "\"missed_inputs\": %llu, \"imu_readings\": %llu, \"faults\": %llu, \"emcy\": %llu},\n",
+               "\"missed_inputs\": %llu, \"imu_readings\": %llu, \"faults\": %llu, \"emcy\": %llu, "
+               "\"law_status\": %u},\n",
             (unsigned long long)r->st.cycles, (unsigned long long)r->st.frames_sent,
             (unsigned long long)r->st.frames_lost, (unsigned long long)r->st.frames_delivered,
             (unsigned long long)r->st.frames_logged, (unsigned long long)r->st.injected,
             (unsigned long long)r->ctrl.missed_inputs, (unsigned long long)r->ctrl.imu_readings,
             (unsigned long long)r->ctrl.faults,
-            (unsigned long long)(r->ctrl.emcy_sent + r->drive.emcy_sent));
+            (unsigned long long)(r->ctrl.emcy_sent + r->drive.emcy_sent), r->ctrl.law_status);
     fprintf(f, "  \"rx\": {\n");
     rx_json(f, "drive", &r->drive.rx, 0);
     rx_json(f, "imu", &r->imu.rx, 0);

@@ -40,7 +40,10 @@ struct hil_ctrl_params {
  * ArmCtrl program, hil/plc_law.h). Called once per cycle with what the node
  * decoded from the bus; returns the torque command in *torque and the
  * reference in *ref (for the logs), and a negative value when the law is in
- * its fault reaction (the node then sends EMCY 0x7300 once per episode).
+ * its fault reaction: -st is the law's status code (ArmCtrl: its StatusID;
+ * 1 when the law has none), kept in law_status; the node then sends EMCY
+ * 0x7300 once per episode with the status code as u16 in bytes 3-4 (the
+ * first two manufacturer-specific bytes).
  * With an external law the node's own IMU watchdog is off: the law has its
  * own fault reaction. */
 struct hil_ctrl_law_in {
@@ -77,6 +80,7 @@ struct hil_ctrl {
     struct hil_ctrl_signals sig;
     uint64_t missed_inputs, emcy_sent, emcy_received, faults;
     uint8_t hb_state[128];    /* last heartbeat state per node, 0xFF = none */
+    unsigned law_status;      /* status code of the law's last fault (0: none yet) */
     hil_ctrl_law law;         /* NULL: the PD test law */
     void *law_ctx;
 };

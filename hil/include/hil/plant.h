@@ -8,7 +8,7 @@
  * angle, shaft velocity), the state at t_{k+1} the drive reports at the next
  * SYNC. Integration: classical RK4, `substeps` steps per half cycle.
  *
- * Two named plants so far, neither is the flexible arm of issue 9 item 4:
+ * Three named plants:
  *  - "rigid" (TEST plant): one rigid inertia J with viscous friction b,
  *        J theta'' = tau - b theta',  tip angle psi = theta;
  *  - "twomass": the rbFFC design model of seed 004 (4.8)-(4.12): motor side
@@ -33,16 +33,32 @@
  *    kv_memory terms, evaluated once per substep and held over it (an
  *    explicit coupling, first order in the substep). The flexible beam of the
  *    issue carries this damping along its length; here the only compliance
- *    is the gear's. */
+ *    is the gear's.
+ *  - "arm": the flexible arm of the design models, seed 004 (3.103) (drive +
+ *    pseudo-spectral Timoshenko beam, full order n = 4 + 4 N), read from the
+ *    plant table `table` that `fracdesign model arm --full --save-plant`
+ *    writes (docs/hil.md): x <- Ad x + Bd (tau - tau_f(theta_M')) per step h
+ *    of the table (Ad, Bd: exact ZOH of the continuous arm at h), h dividing
+ *    T/2; tau is the shaft torque at the middle of the step (linear over the
+ *    cycle as above), tau_f the motor friction by frac/friction.h at the
+ *    velocity at the start of the step (explicit, first order in h; the
+ *    friction's time constant I_M / (b0 k) = 13 ms at Table 8.6 is ~85 h).
+ *    Outputs C x: theta_M, theta_M', tip angle psi_L, tip rate psi_L'; tip
+ *    tangential acceleration L psi_L'' with psi_L'' = C_4 (Ac x + Bc u).
+ *    backlash, the extra mode and Kelvin-Voigt damping are twomass effects:
+ *    the arm plant refuses them (init fails, message in err). */
 #ifndef HIL_PLANT_H
 #define HIL_PLANT_H
 #include "frac/fo_gl.h"
 #include "frac/friction.h"
 #include "hil/node.h"
 
-enum hil_plant_model { HIL_PLANT_RIGID = 0, HIL_PLANT_TWOMASS = 1 };
+enum hil_plant_model { HIL_PLANT_RIGID = 0, HIL_PLANT_TWOMASS = 1, HIL_PLANT_ARM = 2 };
 
 #define HIL_PLANT_KV_MAX 1000 /* most Grunwald-Letnikov terms of the Kelvin-Voigt effect */
+#define HIL_PLANT_ARM_NMAX 128 /* most states of the arm plant (N <= 31) */
+#define HIL_PLANT_TABLE_MAX (8u << 20) /* largest plant table file [bytes] */
+#define HIL_PLANT_PATH_MAX 256
 
 struct hil_plant_params {
     int model;         /* enum hil_plant_model */
@@ -59,6 +75,7 @@ struct hil_plant_params {
     unsigned kv_memory;  /* GL terms, 1..HIL_PLANT_KV_MAX */
     double L;          /* tip radius [m] > 0 */
     unsigned substeps; /* RK4 steps per half cycle, 1..1000 */
+    char table[HIL_PLANT_PATH_MAX]; /* arm: the plant table file (FRPT) */
 };
 
 struct hil_plant {
@@ -73,6 +90,14 @@ struct hil_plant {
     frac_real kv_store[FRAC_GL_STORAGE(HIL_PLANT_KV_MAX)];
     double kv_torque;          /* fractional damping torque of the current substep */
     uint64_t steps;
+    /* arm: the table's model, row-major */
+    unsigned an, aN, asub;     /* states, collocation points, ZOH steps per half cycle */
+    double ah;                 /* ZOH step [s] */
+    double Ad[HIL_PLANT_ARM_NMAX * HIL_PLANT_ARM_NMAX], Bd[HIL_PLANT_ARM_NMAX];
+    double C[4 * HIL_PLANT_ARM_NMAX];
+    double acc_row[HIL_PLANT_ARM_NMAX], acc_b; /* psi_L'' = acc_row x + acc_b u (C_4 Ac, C_4 Bc) */
+    double ax[HIL_PLANT_ARM_NMAX], ay[HIL_PLANT_ARM_NMAX]; /* state, scratch */
+    char err[256];             /* why init failed ("" when it did not) */
 };
 
 /* Defaults: model rigid with J = 2.0 kg m^2, b = 1.0 Nm s/rad, L = 1.0 m,
@@ -81,9 +106,12 @@ struct hil_plant {
  * I_L = 1.69e-4 + 0.7221 kg m^2, c_s = 5e4 Nm/rad (Table 8.2, notes 004b),
  * linear friction b1 = 3.04, b0 = 7.684, k = 60 (Table 8.6). */
 void hil_plant_params_default(struct hil_plant_params *p);
-/* Validates p (friction by frac_friction_init for twomass) and starts at
- * rest at angle 0. HIL_OK or HIL_E_ARG. The struct holds pointers into
- * itself (the GL history): initialise it where it lives, do not copy it. */
+/* Validates p (friction by frac_friction_init for twomass and arm; for arm
+ * also reads and validates the table) and starts at rest at angle 0. HIL_OK
+ * or HIL_E_ARG with the reason in pl->err (for a bad table: the file, the
+ * failing field, e.g. "entry.values of entry 'Ad'", or the entry whose
+ * dimensions are wrong). The struct holds pointers into itself (the GL
+ * history): initialise it where it lives, do not copy it. */
 int hil_plant_init(struct hil_plant *pl, const struct hil_plant_params *p);
 /* Consumes one bus frame; same contract as hil_drive_on_frame. */
 int hil_plant_on_frame(struct hil_plant *pl, const struct hil_can_frame *f, struct hil_out *out);

@@ -34,8 +34,9 @@
 
 struct hil_rig_config {
     char scenario[128];        /* scenario name or file, for the metadata */
-    char plant[16];            /* "rigid" or "twomass" */
-    char law[16];              /* controller law: "pd" (test law) or "armctrl_a" (plc_blocks) */
+    char plant[16];            /* "rigid", "twomass" or "arm" */
+    char law[16];              /* controller law: "pd" (test law), "armctrl_a" or "armctrl" (plc_blocks) */
+    char ctrl_table[HIL_PLANT_PATH_MAX]; /* armctrl: the ArmCtrl parameter table file (FRPT) */
     double duration;           /* simulated seconds > 0 */
     double frame_loss;         /* [0, 1) */
     uint64_t bus_seed;
@@ -76,7 +77,8 @@ void hil_rig_config_default(struct hil_rig_config *c);
 /* Reads "key = value" lines ('#' comments) into c, on top of what it holds.
  * Keys: T (sets the cycle of every node), duration, plant, frame_loss,
  * bus_seed, inject_every, imu_dropout_start, imu_dropout_end, drive_dropout_start,
- * drive_dropout_end, drive_busoff_start, drive_busoff_end, ctrl.law, and the fields
+ * drive_dropout_end, drive_busoff_start, drive_busoff_end, ctrl.law, the file paths
+ * plant.table and ctrl.table (no '#'), and the fields
  * of the node parameter structs as drive.*, imu.*, plant.*, ctrl.*. Returns HIL_OK, HIL_E_IO, or HIL_E_FORMAT with *line_no set to
  * the first bad line (unknown key, bad number). */
 int hil_rig_config_load(struct hil_rig_config *c, const char *path, int *line_no);
@@ -84,7 +86,8 @@ int hil_rig_config_load(struct hil_rig_config *c, const char *path, int *line_no
 int hil_rig_config_set(struct hil_rig_config *c, const char *key, const char *value);
 
 /* Initialises every node; log and csv may be NULL. The CSV header is written
- * here. Returns HIL_OK or HIL_E_ARG (a parameter failed validation). */
+ * here. Returns HIL_OK or HIL_E_ARG (a parameter failed validation; when the
+ * plant refused, r->plant.err says why). */
 int hil_rig_init(struct hil_rig *r, const struct hil_rig_config *c, FILE *log, FILE *csv);
 /* Runs one controller cycle. HIL_OK, or HIL_E_FULL if the bus queue overflowed. */
 int hil_rig_cycle(struct hil_rig *r);
