@@ -1,0 +1,314 @@
+/* plant = arm: the flexible arm of seed 004 (3.103), full order, from the
+ * plant table `fracdesign model arm --N 9 --full --save-plant` writes at
+ * build time (HIL_ARM_TABLE, beam damping r_t = 0.5 as the bench's tables;
+ * HIL_ARM_TABLE_UNDAMPED without). Proves: the table loads (dimensions, step);
+ * bad tables (missing file, truncated, NaN value, wrong dimensions, missing
+ * entry, h not dividing T/2) and twomass-only effects are refused with the
+ * field named; the free response is the table's own discrete model; a
+ * constant torque accelerates the rigid-body mode by 1 / (I_M + I_h +
+ * I_beam) within 1 %; the arm closes the loop on the lockstep bench. */
+#include <stdlib.h>
+#include <string.h>
+#include "frac_test.h"
+#include "../../plc_blocks/ptable_writer.h"
+#include "hil/canopen.h"
+#include "hil/rig.h"
+
+static struct hil_plant pl;
+static struct hil_rig rig;
+
+static unsigned char *slurp(const char *path, unsigned long *size)
+{
+    FILE *f = fopen(path, "rb");
+    unsigned char *b;
+    long n;
+    assert_non_null(f);
+    assert_int_equal(fseek(f, 0, SEEK_END), 0);
+    n = ftell(f);
+    assert_true(n > 0);
+    rewind(f);
+    b = malloc((size_t)n);
+    assert_non_null(b);
+    assert_int_equal(fread(b, 1, (size_t)n, f), (size_t)n);
+    fclose(f);
+    *size = (unsigned long)n;
+    return b;
+}
+
+static void spit(const char *path, const unsigned char *b, unsigned long n)
+{
+    FILE *f = fopen(path, "wb");
+    assert_non_null(f);
+    assert_int_equal(fwrite(b, 1, n, f), n);
+    fclose(f);
+}
+
+/* Arm plant parameters on the fixture table, friction off (b1 = b0 = 0). */
+static void arm_params(struct hil_plant_params *p, const char *table)
+{
+    hil_plant_params_default(p);
+    p->model = HIL_PLANT_ARM;
+    p->friction.b1 = 0;
+    p->friction.b0 = 0;
+    p->L = 1.225;
+    snprintf(p->table, sizeof p->table, "%s", table);
+}
+
+/* Advances the plant one cycle at constant torque. */
+static void cycle(struct hil_plant *q, double tau)
+{
+    struct hil_can_frame f;
+    struct hil_out out;
+    out.n = 0;
+    assert_int_equal(hil_co_rig_encode(&f, HIL_COB_RIG_TORQUE, tau, tau), HIL_OK);
+    assert_int_equal(hil_plant_on_frame(q, &f, &out), HIL_OK);
+    assert_int_equal(out.n, 5);
+}
+
+static void test_table_loads_with_its_dimensions_and_step(void **state)
+{
+    struct hil_plant_params p;
+    (void)state;
+    arm_params(&p, HIL_ARM_TABLE);
+    assert_int_equal(hil_plant_init(&pl, &p), HIL_OK);
+    assert_string_equal(pl.err, "");
+    assert_int_equal(pl.aN, 9);
+    assert_int_equal(pl.an, 40);
+    assert_close(pl.ah, 1.2e-3 / 8, 1e-18);
+    assert_int_equal(pl.asub, 4);
+    /* C row 1: theta_M; row 2: theta_M' = p_M / I_M (drive state 2) */
+    assert_close(pl.C[0], 1.0, 0.0);
+    assert_rel(pl.C[pl.an + 2], 1.0 / (160.0 * 160.0 * 2.29e-4), 1e-12);
+}
+
+/* Writes a copy of the fixture with `mutate` applied and expects init to
+ * fail naming `field`. */
+static void expect_refused(const char *path, const char *field)
+{
+    struct hil_plant_params p;
+    arm_params(&p, path);
+    assert_int_equal(hil_plant_init(&pl, &p), HIL_E_ARG);
+    print_message("refused: %s\n", pl.err);
+    assert_non_null(strstr(pl.err, field));
+}
+
+static void test_bad_tables_are_refused_with_the_field_named(void **state)
+{
+    unsigned long n, ad_off = 0, i;
+    unsigned char *b = slurp(HIL_ARM_TABLE, &n), *c = malloc(n);
+    char path[512];
+    static unsigned char w[4096];
+    const double small[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, dims[2] = {40, 9}, dims_bad[2] = {41, 9}, h = 1.5e-4,
+                 h_bad = 1.7e-4;
+    ptw_entry e[3];
+    (void)state;
+    assert_non_null(c);
+    /* missing file */
+    expect_refused(HIL_ARM_TMP "/no_such_table.bin", "cannot read");
+    /* truncated: the header's total size exceeds the file */
+    snprintf(path, sizeof path, "%s/truncated.bin", HIL_ARM_TMP);
+    spit(path, b, n / 2);
+    expect_refused(path, "total_size");
+    /* a NaN in Ad (CRC resealed, so finiteness is what fails) */
+    for (i = 0; i < 7; i++) {
+        const unsigned char *d = b + FRAC_PTABLE_HEADER_SIZE + i * FRAC_PTABLE_ENTRY_SIZE;
+        if (strcmp((const char *)d, "Ad") == 0)
+            ad_off = d[28] | (unsigned long)d[29] << 8 | (unsigned long)d[30] << 16 | (unsigned long)d[31] << 24;
+    }
+    assert_true(ad_off > 0);
+    memcpy(c, b, n);
+    memset(c + ad_off + 8 * 5, 0xFF, 8); /* all-ones: a quiet NaN */
+    ptw_seal(c, n);
+    snprintf(path, sizeof path, "%s/nan.bin", HIL_ARM_TMP);
+    spit(path, c, n);
+    expect_refused(path, "entry.values of entry 2 'Ad'");
+    /* a corrupted byte without resealing: the CRC */
+    memcpy(c, b, n);
+    c[ad_off] ^= 1;
+    snprintf(path, sizeof path, "%s/crc.bin", HIL_ARM_TMP);
+    spit(path, c, n);
+    expect_refused(path, "crc32");
+    /* wrong dimensions: Ad 3 x 3 where plant_dims says 40 states */
+    e[0].name = "plant_dims"; e[0].rows = 1; e[0].cols = 2; e[0].values = dims;
+    e[1].name = "h"; e[1].rows = 1; e[1].cols = 1; e[1].values = &h;
+    e[2].name = "Ad"; e[2].rows = 3; e[2].cols = 3; e[2].values = small;
+    snprintf(path, sizeof path, "%s/dims.bin", HIL_ARM_TMP);
+    spit(path, w, ptw_write(w, sizeof w, "arm_plant", e, 3));
+    expect_refused(path, "entry 'Ad' is 3 x 3, expected 40 x 40");
+    /* plant_dims not n = 4 + 4 N */
+    e[0].values = dims_bad;
+    spit(path, w, ptw_write(w, sizeof w, "arm_plant", e, 3));
+    expect_refused(path, "plant_dims");
+    /* step not dividing T/2 */
+    e[0].values = dims;
+    e[1].values = &h_bad;
+    spit(path, w, ptw_write(w, sizeof w, "arm_plant", e, 3));
+    expect_refused(path, "does not divide");
+    /* entry missing */
+    spit(path, w, ptw_write(w, sizeof w, "arm_plant", e, 1));
+    expect_refused(path, "entry 'h' missing");
+    free(b);
+    free(c);
+}
+
+static void test_twomass_effects_and_missing_table_are_refused(void **state)
+{
+    struct hil_plant_params p;
+    (void)state;
+    arm_params(&p, HIL_ARM_TABLE);
+    p.backlash = 1e-3;
+    assert_int_equal(hil_plant_init(&pl, &p), HIL_E_ARG);
+    assert_non_null(strstr(pl.err, "plant.backlash"));
+    arm_params(&p, HIL_ARM_TABLE);
+    p.extra_inertia = 0.1;
+    p.extra_hz = 20;
+    assert_int_equal(hil_plant_init(&pl, &p), HIL_E_ARG);
+    assert_non_null(strstr(pl.err, "plant.extra_inertia"));
+    arm_params(&p, HIL_ARM_TABLE);
+    p.kv_damping = 1.0;
+    assert_int_equal(hil_plant_init(&pl, &p), HIL_E_ARG);
+    assert_non_null(strstr(pl.err, "plant.kv_damping"));
+    arm_params(&p, "");
+    assert_int_equal(hil_plant_init(&pl, &p), HIL_E_ARG);
+    assert_non_null(strstr(pl.err, "needs plant.table"));
+    arm_params(&p, HIL_ARM_TABLE);
+    p.friction.k = -1;
+    assert_int_equal(hil_plant_init(&pl, &p), HIL_E_ARG);
+    assert_non_null(strstr(pl.err, "friction"));
+}
+
+/* x[k] = Ad^k x[0] with the table's own Ad, step by step, against the
+ * plant's state after the same number of steps at zero torque. */
+static void test_free_response_is_the_tables_discrete_model(void **state)
+{
+    struct hil_plant_params p;
+    unsigned n, i, j, k, cyc;
+    double x[HIL_PLANT_ARM_NMAX], y[HIL_PLANT_ARM_NMAX], err = 0.0, mag = 0.0;
+    (void)state;
+    arm_params(&p, HIL_ARM_TABLE);
+    assert_int_equal(hil_plant_init(&pl, &p), HIL_OK);
+    n = pl.an;
+    /* a deterministic state with every mode excited: momentum on the motor
+     * and along the beam, strain on the beam */
+    for (i = 0; i < n; i++)
+        x[i] = pl.ax[i] = 1e-3 * (double)((i * 37u) % 11u) - 5e-3;
+    for (cyc = 0; cyc < 200; cyc++) {
+        cycle(&pl, 0.0);
+        for (k = 0; k < 2 * pl.asub; k++) {
+            for (i = 0; i < n; i++) {
+                y[i] = 0.0;
+                for (j = 0; j < n; j++)
+                    y[i] += pl.Ad[i * n + j] * x[j];
+            }
+            memcpy(x, y, sizeof x);
+        }
+    }
+    for (i = 0; i < n; i++) {
+        double d = fabs(pl.ax[i] - x[i]);
+        err = d > err ? d : err;
+        mag = fabs(x[i]) > mag ? fabs(x[i]) : mag;
+    }
+    print_message("free response after 200 cycles: max |x - Ad^k x0| = %.3g (max |x| %.3g)\n", err, mag);
+    assert_true(mag > 1e-3);
+    assert_true(err <= 1e-12 * mag);
+    /* the reported outputs are C x */
+    {
+        double th = 0.0, tip = 0.0;
+        for (j = 0; j < n; j++) {
+            th += pl.C[j] * x[j];
+            tip += pl.C[2 * n + j] * x[j];
+        }
+        assert_close(pl.theta, th, 1e-12);
+        assert_close(pl.psi, tip, 1e-12);
+    }
+}
+
+/* Seed 004 Tables 8.2/8.3: the rigid arm's inertia about the motor axis. */
+static double rigid_inertia(void)
+{
+    const double I_M = 160.0 * 160.0 * 2.29e-4, I_h = 1.69e-4, r_h = 0.025, L = 1.2;
+    const double rho = 7856.0 * 0.03 * 0.005, I_rho = 7856.0 * 0.03 * 0.005 * 0.005 * 0.005 / 12.0;
+    return I_M + I_h + rho * ((r_h + L) * (r_h + L) * (r_h + L) - r_h * r_h * r_h) / 3.0 + I_rho * L;
+}
+
+static void test_constant_torque_accelerates_the_rigid_body_mode(void **state)
+{
+    struct hil_plant_params p;
+    const double tau = 10.0, I = rigid_inertia();
+    double s[5] = {0, 0, 0, 0, 0}, r[3] = {0, 0, 0}, a, t;
+    unsigned k, K = 1667; /* 2.0 s */
+    (void)state;
+    /* the undamped beam: the bench tables' r_t damps the rigid-body motion
+     * too (it is a damping against the inertial frame) */
+    arm_params(&p, HIL_ARM_TABLE_UNDAMPED);
+    assert_int_equal(hil_plant_init(&pl, &p), HIL_OK);
+    /* least-squares fit theta_M(t) = c0 + c1 t + c2 t^2: acceleration 2 c2 */
+    for (k = 1; k <= K; k++) {
+        cycle(&pl, tau);
+        t = k * p.T;
+        s[0] += 1; s[1] += t; s[2] += t * t; s[3] += t * t * t; s[4] += t * t * t * t;
+        r[0] += pl.theta; r[1] += t * pl.theta; r[2] += t * t * pl.theta;
+    }
+    {
+        /* normal equations by Cramer's rule */
+        double m[3][3], det, m2[3][3];
+        int i, j;
+        for (i = 0; i < 3; i++)
+            for (j = 0; j < 3; j++)
+                m[i][j] = s[i + j];
+        det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+              m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+        memcpy(m2, m, sizeof m);
+        for (i = 0; i < 3; i++)
+            m2[i][2] = r[i];
+        a = 2.0 * (m2[0][0] * (m2[1][1] * m2[2][2] - m2[1][2] * m2[2][1]) -
+                   m2[0][1] * (m2[1][0] * m2[2][2] - m2[1][2] * m2[2][0]) +
+                   m2[0][2] * (m2[1][0] * m2[2][1] - m2[1][1] * m2[2][0])) / det;
+    }
+    print_message("constant %.0f Nm: acceleration %.6f rad/s^2, tau / I = %.6f (I = %.5f kg m^2)\n", tau, a, tau / I, I);
+    assert_rel(a, tau / I, 0.01);
+    /* the tip follows the hub: same mean acceleration, angle close to the motor's */
+    assert_close(pl.psi, pl.theta, 0.02 * pl.theta);
+}
+
+static void test_arm_closes_the_loop_on_the_lockstep_bench(void **state)
+{
+    struct hil_rig_config c;
+    (void)state;
+    hil_rig_config_default(&c);
+    assert_int_equal(hil_rig_config_set(&c, "plant", "arm"), HIL_OK);
+    assert_int_equal(hil_rig_config_set(&c, "plant.table", HIL_ARM_TABLE), HIL_OK);
+    assert_int_equal(hil_rig_config_set(&c, "plant.L", "1.225"), HIL_OK);
+    c.duration = 2.0;
+    assert_int_equal(hil_rig_init(&rig, &c, NULL, NULL), HIL_OK);
+    assert_int_equal(hil_rig_run(&rig), HIL_OK);
+    print_message("PD test law on the arm: motor %.5f rad, tip %.5f rad (reference %.3f)\n", rig.plant.theta,
+                  rig.plant.psi, c.ctrl.move);
+    /* the PD test law has no friction compensation: the Coulomb friction
+     * b0 (Table 8.6) can hold the motor off by up to b0 / kp */
+    assert_close(rig.plant.theta, c.ctrl.move, 1.05 * c.plant_p.friction.b0 / c.ctrl.kp);
+    assert_close(rig.plant.psi, c.ctrl.move, 2e-2);
+    assert_int_equal(rig.ctrl.missed_inputs, 0);
+    assert_int_equal(rig.ctrl.faults, 0);
+    assert_true(rig.plant.steps == rig.st.cycles);
+    /* a table the plant refuses fails the rig's init, the reason kept */
+    assert_int_equal(hil_rig_config_set(&c, "plant.table", HIL_ARM_TMP "/no_such_table.bin"), HIL_OK);
+    assert_int_equal(hil_rig_init(&rig, &c, NULL, NULL), HIL_E_ARG);
+    assert_non_null(strstr(rig.plant.err, "no_such_table.bin"));
+    /* the key refuses '#' and empty paths */
+    assert_int_equal(hil_rig_config_set(&c, "plant.table", "a#b"), HIL_E_FORMAT);
+    assert_int_equal(hil_rig_config_set(&c, "plant.table", ""), HIL_E_FORMAT);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_table_loads_with_its_dimensions_and_step),
+        cmocka_unit_test(test_bad_tables_are_refused_with_the_field_named),
+        cmocka_unit_test(test_twomass_effects_and_missing_table_are_refused),
+        cmocka_unit_test(test_free_response_is_the_tables_discrete_model),
+        cmocka_unit_test(test_constant_torque_accelerates_the_rigid_body_mode),
+        cmocka_unit_test(test_arm_closes_the_loop_on_the_lockstep_bench),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
