@@ -556,6 +556,19 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
             const double d = std::fabs(yc(k) - yc(k - 1));
             if (d > 1e-12 * sigma.back()) q = std::min(q, d);
         }
+        // The step: the smallest nonzero change, refined as the least-squares
+        // scale of the measured values as integer multiples of it (a step
+        // that the logger rounds again, e.g. to a wire resolution, is then
+        // not off by that rounding).
+        if (std::isfinite(q)) {
+            double num = 0, den = 0;
+            for (Eigen::Index k = 0; k < R.fit_samples; ++k) {
+                const double n = std::round(yc(k) / q);
+                num += n * yc(k);
+                den += n * n;
+            }
+            if (den > 0 && std::fabs(num / den - q) < 0.5 * q) q = num / den;
+        }
         ctx.quant_step.push_back(std::isfinite(q) ? q : 0.0);
         resn.col(Eigen::Index(c)) = (ymeas.col(Eigen::Index(c)) - nom.y.col(Eigen::Index(c))) / sigma.back();
     }

@@ -1,0 +1,96 @@
+// test_gap_where.cpp - the time windows of the gap diagnosis carry the
+// operating condition of the nominal replay there (docs/gap.md "Where").
+//
+// Open-loop mass-damper v' = u - v, x' = v at Ts = 0.01 s over 40 s (40
+// windows of 1 s). The input makes a standstill (0-5 s), steady motion, a
+// velocity reversal at 15 s and the largest force, a short pulse of
+// u = 3 at 30-31 s. The "measured" record is the nominal replay plus a 5 Hz
+// burst in four windows; each burst's window must be flagged with its
+// condition.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "fracdesign/gap/diagnosis.hpp"
+
+using namespace fracdesign::gap;
+
+namespace {
+
+const double kTs = 0.01;
+const Eigen::Index kN = 4000;
+
+nlohmann::json model_doc()
+{
+    return {{"schema", "frac.model"},
+            {"version", 1},
+            {"kind", "statespace"},
+            {"name", "mass_damper"},
+            {"time", "continuous"},
+            {"A", {{0.0, 1.0}, {0.0, -1.0}}},
+            {"B", {{0.0}, {1.0}}},
+            {"C", {{1.0, 0.0}, {0.0, 1.0}}},
+            {"D", {{0.0}, {0.0}}},
+            {"inputs", {"u"}},
+            {"outputs", {"x", "v"}},
+            {"gap", {{"velocity", "v"}, {"force_input", "u"}}}};
+}
+
+double input(double t)
+{
+    if (t < 5) return 0.0;
+    if (t < 15) return 1.0;
+    if (t < 25) return -1.0;
+    if (t >= 30 && t < 31) return 3.0;
+    return 0.0;
+}
+
+const Window* window_at(const GapResult& r, double t)
+{
+    for (const Window& w : r.windows)
+        if (w.t0 <= t && t < w.t1) return &w;
+    return nullptr;
+}
+
+}  // namespace
+
+TEST(GapWhere, windows_are_labelled_with_standstill_reversal_acceleration_and_torque_limit)
+{
+    const NominalModel m = nominal_from_json(model_doc(), kTs);
+    Signals s;
+    s.source = "synthetic";
+    s.names = {"u", "x", "v"};
+    s.Ts = kTs;
+    s.values = Eigen::MatrixXd::Zero(kN, 3);
+    for (Eigen::Index k = 0; k < kN; ++k) s.values(k, 0) = input(double(k) * kTs);
+    const ReplayTrace nom = replay(make_replay_setup(m, s, {}, {"x", "v"}), {});
+    const double bursts[] = {2.0, 15.0, 30.0, 10.0};
+    for (Eigen::Index k = 0; k < kN; ++k) {
+        const double t = double(k) * kTs;
+        double b = 0;
+        for (double c : bursts)
+            if (t >= c + 0.2 && t < c + 0.8) b = 0.05 * std::sin(2 * M_PI * 5 * t);
+        s.values(k, 1) = nom.y(k, 0);
+        s.values(k, 2) = nom.y(k, 1) + b;
+    }
+    GapOptions opt;
+    opt.effects = {Effect::gain_error};
+    const GapResult r = diagnose(m, s, nullptr, opt);
+    const struct {
+        double t;
+        const char* label;
+    } want[] = {{2.5, "standstill"},
+                {15.5, "velocity reversal"},
+                {15.5, "high acceleration"},
+                {30.5, "near torque limit"},
+                {30.5, "high acceleration"},
+                {10.5, "steady motion"}};
+    for (const auto& w : want) {
+        const Window* win = window_at(r, w.t);
+        ASSERT_NE(win, nullptr) << "no flagged window at " << w.t << " s";
+        EXPECT_NE(win->condition.find(w.label), std::string::npos) << w.t << " s: " << win->condition;
+    }
+    EXPECT_EQ(window_at(r, 2.5)->condition.find("reversal"), std::string::npos);
+    EXPECT_EQ(window_at(r, 10.5)->condition, "steady motion");
+    EXPECT_EQ(window_at(r, 20.5), nullptr);  // no burst, no flag
+}
