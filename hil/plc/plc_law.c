@@ -137,10 +137,22 @@ int hil_plc_law_step(void *ctx, const struct hil_ctrl_law_in *in, double *torque
     L->drive_img.MotorVelocity = (REAL)in->omega;
     if (in->drive_fresh)
         L->drive_img.DriveCounter++;
-    L->drive_img.Start = in->enabled || L->drive_img.Start;
+    /* the cyclic tasks start once the I/O is up (drive enabled, an IMU
+     * reading in): the watchdogs would otherwise count the boot of the bus
+     * as stale sensors; a program in fault runs (and reports) at once */
+    if (!L->io_up && !L->a.fault && !(in->enabled && in->imu_readings > 0)) {
+        *torque = 0.0;
+        *ref = 0.0;
+        return HIL_OK;
+    }
+    L->io_up = 1;
+    /* Start rises in the second cycle run (a Start already TRUE at the first
+     * is not an edge for ArmCtrl) */
+    L->drive_img.Start = (L->cycles_run > 0 && in->enabled) || L->drive_img.Start;
     L->can_img.RawRate = (REAL)in->imu_rate;
     L->can_img.FrameCounter = (UDINT)in->imu_readings;
     plc_rt_run_sim(&L->rt, 12);
+    L->cycles_run++;
     *torque = L->ctrl_img.TorqueEnable ? (double)L->ctrl_img.TorqueSetpoint : 0.0;
     *ref = 0.0;
     if (!L->a.fault) {

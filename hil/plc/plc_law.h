@@ -9,8 +9,11 @@
  * counter advanced per reading received), the runtime runs 12 ticks (Cyclic
  * #1 latches the image at its release, publishes after its simulated CPU time
  * of 300 us; Cyclic #2 runs twice), and the published TorqueSetpoint is the
- * command (0 while TorqueEnable is FALSE). Start goes TRUE at the first cycle
- * the drive reports "operation enabled".
+ * command (0 while TorqueEnable is FALSE). The cyclic tasks start to run in
+ * the first cycle in which the drive reports "operation enabled" and an IMU
+ * reading has arrived (the application starts when its I/O is up; before,
+ * the command is 0 Nm): the watchdogs would count the boot of the bus as
+ * stale sensors. Start goes TRUE one cycle later (an edge for ArmCtrl).
  *
  * Variant Exp. A (Table 8.1): rbFFC feedforward (4.14)-(4.17) of the Table
  * 8.5 point-to-point move (frac/traj.h: 0 -> pi/2, dq_max pi/2, ddq_max 2 pi,
@@ -58,6 +61,8 @@ struct hil_plc_law {
     const armctrl_params *P;       /* the parameters in use (par or store.par) */
     frac_real psi_ref[ARMCTRL_FF_MAX]; /* integral of the dpsi_L* row, per table sample */
     int started;
+    int io_up;                     /* the drive is enabled and an IMU reading came: the tasks run */
+    uint64_t cycles_run;           /* controller cycles the task runtime has run */
 };
 
 /* Builds Exp. A for cycle T = 1.2 ms on the design model (I_M, I_L, c_s),
