@@ -131,8 +131,10 @@ static int load_arm(struct hil_plant *pl)
         pl->ah = v[0];
         pl->asub = (unsigned)m;
     }
-    if (st == HIL_OK)
-        st = table_get(pl, &t, "Ad", n, n, tmp, pl->Ad);
+    if (st == HIL_OK && (st = table_get(pl, &t, "Ad", n, n, tmp, Ac)) == HIL_OK)
+        for (i = 0; i < n; i++) /* column-major: the step is a sum of columns */
+            for (j = 0; j < n; j++)
+                pl->Ad[j * n + i] = Ac[i * n + j];
     if (st == HIL_OK)
         st = table_get(pl, &t, "Bd", n, 1, tmp, pl->Bd);
     if (st == HIL_OK)
@@ -300,12 +302,14 @@ static void arm_half(struct hil_plant *pl, double tau0, double slope)
             w += pl->C[n + j] * x[j];
         frac_friction_eval(&pl->fric, (frac_real)w, &tf);
         u = tau0 + slope * ((double)k + 0.5) * h - (double)tf;
-        for (i = 0; i < n; i++) {
-            const double *a = pl->Ad + (size_t)i * n;
-            double acc = pl->Bd[i] * u;
-            for (j = 0; j < n; j++)
-                acc += a[j] * x[j];
-            y[i] = acc;
+        /* y = Bd u + sum_j Ad(:, j) x_j: each y_i sums in the order of the
+         * row product, and the inner loop over i vectorizes */
+        for (i = 0; i < n; i++)
+            y[i] = pl->Bd[i] * u;
+        for (j = 0; j < n; j++) {
+            const double *a = pl->Ad + (size_t)j * n, xj = x[j];
+            for (i = 0; i < n; i++)
+                y[i] += a[i] * xj;
         }
         memcpy(x, y, n * sizeof *x);
     }

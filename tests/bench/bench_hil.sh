@@ -7,15 +7,17 @@
 #     controller's SYNC lateness p50/p99/max (hil_bench --realtime) against a
 #     bare clock_nanosleep loop at the same period (tests/hil/hil_sleep_ref.c),
 #     with normal scheduling and with SCHED_FIFO priority 50.
-# The plant is the rigid TEST plant: the flexible-arm plants (N = 9, N = 20)
-# are not in the rig yet (docs/hil.md), so the N = 9 / N = 20 figures of the
-# issue cannot be reported.
+#  3. lockstep speed with the flexible arm (plant = arm, full order, N = 9 and
+#     N = 20 collocation points: 40 and 84 states, exact ZOH steps of 0.15 ms)
+#     under ArmCtrl Exp. D from its table (hil/scenarios/exp_d.txt), against
+#     the rigid test plant of 1. in the same run; goal >= 50x real time at
+#     N = 9; and the callgrind instructions per simulated second.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/lib.sh"
 build=${FRAC_BUILD:?}
 bin=$build/hil
-cmake --build "$build" --target hil_apps hil_sleep_ref >/dev/null
+cmake --build "$build" --target hil_apps hil_sleep_ref hil_tables >/dev/null
 work=$(mktemp -d /tmp/bench_hil.XXXXXX)
 trap 'rm -rf "$work"' EXIT
 
@@ -40,6 +42,23 @@ printf 'T = 0.0012\nduration = 1\nplant = twomass\nplant.substeps = 8\nctrl.law 
 ir_two=$(callgrind_ir hil_rig_run "$bin/hil_bench" --scenario "$work/two.txt" --out "$work/f")
 printf '%-52s %12s %12s %8s\n' "instructions per simulated second (callgrind)" "rigid+PD" "twomass+ArmCtrl" "ratio"
 printf '%-52s %12s %12s %8s\n' "hil_rig_run incl. candump log and CSV" "$ir_rigid" "$ir_two" "$(ratio "$ir_two" "$ir_rigid")"
+
+# The flexible arm (tables made by the build in $bin/tables), Exp. D.
+echo
+printf '%-52s %12s %12s %8s\n' "lockstep speed, arm + ArmCtrl Exp. D [sim s / wall s]" "arm" "rigid+PD" "ratio"
+for N in 9 20; do
+  goal=""
+  [ $N = 9 ] && goal=" (goal >= 50)"
+  arm=$("$bin/hil_bench" --scenario "$FRAC_SRC/hil/scenarios/exp_d.txt" --set plant.table=arm_n$N.bin \
+        --set duration=20 --out "$work/g$N" | speed)
+  printf '%-52s %12s %12s %8s\n' "N = $N, full logging$goal" "$arm" "$inproc" "$(ratio "$arm" "$inproc")"
+done
+printf '%-52s %12s %12s %8s\n' "instructions per simulated second (callgrind)" "arm" "rigid+PD" "ratio"
+for N in 9 20; do
+  ir_arm=$(callgrind_ir hil_rig_run "$bin/hil_bench" --scenario "$FRAC_SRC/hil/scenarios/exp_d.txt" \
+           --set plant.table=arm_n$N.bin --set duration=1 --out "$work/h$N")
+  printf '%-52s %12s %12s %8s\n' "N = $N, hil_rig_run incl. logs" "$ir_arm" "$ir_rigid" "$(ratio "$ir_arm" "$ir_rigid")"
+done
 
 cat > "$work/rt.txt" <<SCEN
 T = 0.0012

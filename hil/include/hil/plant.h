@@ -90,7 +90,7 @@ struct hil_plant {
     frac_real kv_store[FRAC_GL_STORAGE(HIL_PLANT_KV_MAX)];
     double kv_torque;          /* fractional damping torque of the current substep */
     uint64_t steps;
-    /* arm: the table's model, row-major */
+    /* arm: the table's model; Ad column-major (Ad[j n + i] = Ad(i, j)), C row-major */
     unsigned an, aN, asub;     /* states, collocation points, ZOH steps per half cycle */
     double ah;                 /* ZOH step [s] */
     double Ad[HIL_PLANT_ARM_NMAX * HIL_PLANT_ARM_NMAX], Bd[HIL_PLANT_ARM_NMAX];

@@ -198,7 +198,7 @@ static void test_free_response_is_the_tables_discrete_model(void **state)
             for (i = 0; i < n; i++) {
                 y[i] = 0.0;
                 for (j = 0; j < n; j++)
-                    y[i] += pl.Ad[i * n + j] * x[j];
+                    y[i] += pl.Ad[j * n + i] * x[j]; /* column-major */
             }
             memcpy(x, y, sizeof x);
         }
