@@ -230,14 +230,16 @@ EffectSetup effect_setup(Effect e, const Context& c)
         s.starts = {std::vector<double>(ny, 0.0)};
         break;
     case Effect::quantization: {
-        std::vector<double> one, two;
+        // The lattice step of each output's data, where it is coarser than
+        // the noise (0 otherwise: not quantized); no start when none is.
+        bool any = false;
+        std::vector<double> one;
         for (size_t i = 0; i < ny; ++i) {
             s.spec.push_back({1.0, 0, 1e300, true});
             one.push_back(c.quant_step[i]);
-            two.push_back(2 * c.quant_step[i]);
+            any = any || c.quant_step[i] > 0;
         }
-        s.starts = {one, two};
-        s.screen = true;
+        if (any) s.starts = {one};
         break;
     }
     }
@@ -560,17 +562,38 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
         // scale of the measured values as integer multiples of it (a step
         // that the logger rounds again, e.g. to a wire resolution, is then
         // not off by that rounding).
-        if (std::isfinite(q)) {
+        // Passes over |y| <= 20 q, <= 400 q, then all: the multiples n stay
+        // exact while the step is still off by a few percent.
+        for (const double reach : {20.0, 400.0, std::numeric_limits<double>::infinity()}) {
+            if (!std::isfinite(q)) break;
             double num = 0, den = 0;
             for (Eigen::Index k = 0; k < R.fit_samples; ++k) {
+                if (std::fabs(yc(k)) > reach * q) continue;
                 const double n = std::round(yc(k) / q);
                 num += n * yc(k);
                 den += n * n;
             }
             if (den > 0 && std::fabs(num / den - q) < 0.5 * q) q = num / den;
         }
-        ctx.quant_step.push_back(std::isfinite(q) ? q : 0.0);
         resn.col(Eigen::Index(c)) = (ymeas.col(Eigen::Index(c)) - nom.y.col(Eigen::Index(c))) / sigma.back();
+        // A step finer than the white part of the residual is dithered by
+        // the noise: the reading's cell then says nothing the noise does not.
+        // White level: sigma_w = rms(r(k) - (r(k-1) + r(k+1))/2) / sqrt(1.5)
+        // of the nominal residual (a quantization error of step q alone gives
+        // sigma_w = q/sqrt(12)); the step is used when q >= 2 sigma_w, i.e.
+        // q >= 2.45 x the noise std.
+        double hf = 0;
+        for (Eigen::Index k = 1; k + 1 < R.fit_samples; ++k) {
+            const double d = resn(k, Eigen::Index(c)) - 0.5 * (resn(k - 1, Eigen::Index(c)) + resn(k + 1, Eigen::Index(c)));
+            hf += d * d;
+        }
+        const double sigma_w = sigma.back() * std::sqrt(hf / double(std::max<Eigen::Index>(1, R.fit_samples - 2)) / 1.5);
+        // And the data must lie on the lattice: rms distance to it below
+        // q/10 (values off any lattice give q/sqrt(12) = 0.29 q).
+        double off = 0;
+        for (Eigen::Index k = 0; std::isfinite(q) && k < R.fit_samples; ++k) off += std::pow(yc(k) - q * std::round(yc(k) / q), 2);
+        const bool lattice = std::isfinite(q) && std::sqrt(off / double(R.fit_samples)) < 0.1 * q;
+        ctx.quant_step.push_back(lattice && q >= 2 * sigma_w ? q : 0.0);
     }
     // Residual peaks (fit part), for the mode candidates' start frequencies.
     {
@@ -655,8 +678,10 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
             continue;
         }
         EffectSetup es = effect_setup(e, ctx);
-        if (es.starts.empty() || (e == Effect::quantization && *std::min_element(ctx.quant_step.begin(), ctx.quant_step.end()) <= 0)) {
-            R.skipped.push_back(effect_name(e) + ": no start value from the data");
+        if (es.starts.empty()) {
+            R.skipped.push_back(effect_name(e) + (e == Effect::quantization
+                                                       ? ": no output's data lie on a lattice coarser than its noise"
+                                                       : ": no start value from the data"));
             continue;
         }
         FitProblem P = base_problem;

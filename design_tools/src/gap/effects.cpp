@@ -112,6 +112,8 @@ ReplaySetup make_replay_setup(const NominalModel& m, const Signals& data, const 
         if (!data.has(o)) throw std::runtime_error("model/data mismatch: output '" + o + "' is not a column of " + data.source);
         s.compared.push_back(i);
     }
+    s.measured.resize(N, Eigen::Index(outputs.size()));
+    for (size_t c = 0; c < outputs.size(); ++c) s.measured.col(Eigen::Index(c)) = data.col(outputs[c]);
     if (s.compared.empty()) throw std::runtime_error("model/data mismatch: no model output is a column of " + data.source);
     // Initial state: least squares through the first measured sample.
     Eigen::MatrixXd Cc(s.compared.size(), m.A.rows());
@@ -259,7 +261,8 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     std::vector<double> x(s.x0.data(), s.x0.data() + nx), xn(static_cast<size_t>(nx));
     std::vector<double> xc(s.xc0.data(), s.xc0.data() + s.xc0.size()), xcn(xc.size());
     const int ncs = int(xc.size());
-    std::vector<double> ytrue(static_cast<size_t>(ny)), ysens(static_cast<size_t>(ny)), u(static_cast<size_t>(nu)),
+    std::vector<double> ytrue(static_cast<size_t>(ny)), ysens(static_cast<size_t>(ny)), yraw(static_cast<size_t>(ny)),
+        u(static_cast<size_t>(nu)),
         up(static_cast<size_t>(nu));
     std::vector<double> w(m.closed_loop ? static_cast<size_t>(m.loop.Bc.cols()) : 0), cvec(static_cast<size_t>(nu));
     double eta[2] = {0, 0};
@@ -282,6 +285,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
         h_out.push(ytrue.data());
         for (int i = 0; i < ny; ++i) {
             double y = h_out.lagged(dout[size_t(i)] + 1)[i] + offset[size_t(i)];
+            yraw[size_t(i)] = y;
             if (step[size_t(i)] > 0) y = step[size_t(i)] * std::round(y / step[size_t(i)]);
             ysens[size_t(i)] = y;
         }
@@ -366,7 +370,18 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
             input_path(v);
             plant_outputs(true);
         }
-        for (int c = 0; c < ncmp; ++c) tr.y(k, c) = ysens[size_t(s.compared[size_t(c)])];
+        for (int c = 0; c < ncmp; ++c) {
+            const size_t i = size_t(s.compared[size_t(c)]);
+            tr.y(k, c) = ysens[i];
+            // A quantizing sensor reports the cell [m - q/2, m + q/2] around
+            // its reading m: the residual is the model value's distance to
+            // that cell (zero inside it), so the trace holds m shifted by
+            // that distance (the feedback above gets the rounded value).
+            if (step[i] > 0 && k < s.measured.rows()) {
+                const double m = s.measured(k, c), h = 0.5 * step[i];
+                tr.y(k, c) = m + (yraw[i] - std::min(std::max(yraw[i], m - h), m + h));
+            }
+        }
         tr.u(k) = up[size_t(fi)];
         tr.v(k) = v;
         for (int i = 0; i < nx; ++i) {

@@ -54,6 +54,10 @@ struct ReplaySetup {
     Eigen::VectorXd x0;                // initial plant state
     Eigen::VectorXd xc0;               // initial controller state
     std::vector<int> compared;         // model output index of each compared output
+    // The record's compared outputs (samples x compared): a quantizing
+    // sensor's reading stands for its cell, so the quantization effect
+    // compares the model with the cell around the reading (docs/gap.md).
+    Eigen::MatrixXd measured;
     double eps_velocity = 1.0;         // sign(v) ~ tanh(v/eps) where the force input does not reach v in one step
     int fractional_memory = 256;       // Grunwald-Letnikov memory, samples
 
