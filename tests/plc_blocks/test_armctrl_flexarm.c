@@ -271,8 +271,9 @@ static void expect_tracking(const flexbench *b, double track_tol, double settle_
 /* Bounds: the thesis reports no tracking error (notes 9.7), only torque
  * ranges and lags, so the tracking bounds are the project's: well above
  * the figures measured here (docs/plc_blocks.md) so that a retuned design
- * still passes, well below what a broken loop or a misaligned table gives
- * (a one-cycle shift of the table alone is q' T = 1.9e-3 rad). */
+ * still passes, well below what a loop blind to the beam gives (Exp. A's
+ * rbFFC, about 5e-2 rad, fails every other bound); B's 1e-3 rad also
+ * catches a table shifted by one cycle (q'max T = 1.9e-3 rad). */
 static void test_exp_a_and_b_track_table_8_5_on_the_flexible_arm(void **state)
 {
     static flexbench a, b;
