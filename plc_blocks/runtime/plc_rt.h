@@ -224,7 +224,8 @@ int plc_rt_run_sim(plc_rt *rt, uint64_t n_ticks);
  * classes of a tick, idle iterations run while the next tick is farther
  * away than the longest iteration so far (one host thread cannot preempt
  * a running iteration, so the runtime budgets it instead; an iteration
- * that still ends after the next tick is counted in stats[].late).
+ * that still ends after the next tick is counted in stats[].late; one
+ * longer than the gap between ticks therefore runs once and no more).
  * Returns as plc_rt_run_sim, or PLC_RT_E_CLOCK. */
 int plc_rt_run_wall(plc_rt *rt, uint64_t n_ticks);
 
