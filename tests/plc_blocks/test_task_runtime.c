@@ -706,6 +706,20 @@ static void test_idle_class_fills_the_wall_clock_gaps(void **state)
     assert_true(rt.stats[PLC_RT_IDLE_INDEX].late <= rt.stats[PLC_RT_IDLE_INDEX].cycles);
     plc_rt_report(&rt, stdout);
     plc_rt_stop(&rt);
+
+    /* an iteration (1.5 ms) longer than any gap between ticks (< 400 us):
+     * it runs once, ends after the next tick (late), and the budget keeps
+     * it from starting again; still no violation of the idle class */
+    bg.cyclic = busy_1500;
+    f.calls = 0;
+    build(&rt, &cfg, reg, 2);
+    assert_int_equal(plc_rt_start(&rt), PLC_RT_OK);
+    assert_int_equal(plc_rt_run_wall(&rt, 30), PLC_RT_OK);
+    assert_int_equal(rt.stats[PLC_RT_IDLE_INDEX].cycles, 1);
+    assert_int_equal(rt.stats[PLC_RT_IDLE_INDEX].late, 1);
+    assert_int_equal(rt.stats[PLC_RT_IDLE_INDEX].violations, 0);
+    assert_int_equal(rt.stats[0].cycles, 10);
+    plc_rt_stop(&rt);
 }
 
 int main(void)
