@@ -376,45 +376,49 @@ typedef struct idle_fixture {
     size_t n_order;
 } idle_fixture;
 
+/* Records an entry point in the call order (the first 63 calls). */
+static void note(idle_fixture *f, char c)
+{
+    if (f->n_order < sizeof f->order - 1) {
+        f->order[f->n_order++] = c;
+    }
+}
+
 static void bg_init(void *ctx)
 {
     idle_fixture *f = (idle_fixture *)ctx;
-    f->order[f->n_order++] = 'i';
+    note(f, 'i');
 }
 
 static void bg_cyclic(void *ctx)
 {
     idle_fixture *f = (idle_fixture *)ctx;
     f->loc_count = ++f->calls;
-    if (f->n_order < sizeof f->order - 1) {
-        f->order[f->n_order++] = 'c';
-    }
+    note(f, 'c');
 }
 
 static void bg_exit(void *ctx)
 {
     idle_fixture *f = (idle_fixture *)ctx;
-    f->order[f->n_order++] = 'x';
+    note(f, 'x');
 }
 
 static void fg_init(void *ctx)
 {
     idle_fixture *f = (idle_fixture *)ctx;
-    f->order[f->n_order++] = 'I';
+    note(f, 'I');
 }
 
 static void fg_cyclic(void *ctx)
 {
     idle_fixture *f = (idle_fixture *)ctx;
-    if (f->n_order < sizeof f->order - 1) {
-        f->order[f->n_order++] = 'C';
-    }
+    note(f, 'C');
 }
 
 static void fg_exit(void *ctx)
 {
     idle_fixture *f = (idle_fixture *)ctx;
-    f->order[f->n_order++] = 'X';
+    note(f, 'X');
 }
 
 static void idle_programs(idle_fixture *f, plc_io *out, plc_program *bg, plc_program *fg)
