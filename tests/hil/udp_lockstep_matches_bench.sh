@@ -4,8 +4,8 @@
 # exactly: same controller signals cycle by cycle, same number of frames, and
 # the logger's log holds every frame the nodes sent; the same through the
 # one-line launcher hil_bench --processes, truth columns included.
-# usage: udp_lockstep_matches_bench.sh BUILD_DIR WORK_DIR SCENARIO [SCENARIO2]
-# (SCENARIO2: one more scenario for the hil_bench --processes comparison)
+# usage: udp_lockstep_matches_bench.sh BUILD_DIR WORK_DIR SCENARIO [SCENARIO2...]
+# (SCENARIO2...: more scenarios for the hil_bench --processes comparison)
 set -euo pipefail
 bin=$(cd "${1:?usage: udp_lockstep_matches_bench.sh BUILD_DIR WORK_DIR SCENARIO}" && pwd)/hil
 work=${2:?}
@@ -42,7 +42,8 @@ grep -q 'step_timeouts=0' "$work/ctrl.txt" || { echo "FAIL: a lockstep wait time
 # The one-line launcher: hil_bench --processes writes the same signals.csv as
 # the in-process bench (truth from the plant process joined row by row); the
 # drive's torque travels as float32 to the plant, so that column agrees to 1e-4.
-for extra in "$scen" ${4:-}; do
+for extra in "$scen" "${@:4}"; do
+  [ -n "$extra" ] || continue
   name=$(basename "$extra" .txt)
   "$bin/hil_bench" --processes --scenario "$extra" --out "$work/procs-$name" > /dev/null
   "$bin/hil_bench" --scenario "$extra" --out "$work/bench-$name" > /dev/null
