@@ -246,6 +246,14 @@ static void run_flexarm(flexbench *b, char exp, int delayed)
     assert_int_equal(plc_rt_run_sim(&rt, 40024), PLC_RT_OK);
     assert_int_equal(rt.stats[0].violations + rt.stats[1].violations, 0);
     assert_int_equal(storage.par.Variant, (armctrl_variant)(exp - 'A'));
+    /* the delay model is Exp. D's alone: d_i = 4, d_o = 3 on the IMU
+     * (Table 8.8), torque table 4 cycles early, IMU reference 3 late */
+    assert_int_equal(storage.par.Lqg.Di, exp == 'D' ? 4 : 0);
+    assert_int_equal(storage.par.Lqg.Do[0] + storage.par.Lqg.Do[1], 0);
+    assert_int_equal(storage.par.Lqg.Do[2], exp == 'D' ? 3 : 0);
+    assert_int_equal(storage.par.Ff.Lead[ARMCTRL_FF_TAU], exp == 'D' ? 4 : 0);
+    assert_int_equal(storage.par.Ff.Lead[ARMCTRL_FF_DPSI], exp == 'D' ? -3 : 0);
+    assert_int_equal(storage.par.Ff.Lead[ARMCTRL_FF_THETA] + storage.par.Ff.Lead[ARMCTRL_FF_DTHETA], 0);
     plc_rt_stop(&rt);
     print_message("Exp. %c (%s plant): max |psi_L - q| = %.3g rad, final psi_L = %.6f rad (pi/2 %+.2e), "
                   "max |psi_L - pi/2| after 3 s = %.3g rad, max |tau| = %.1f Nm, StatusID %u\n",
