@@ -1,5 +1,5 @@
-/* hil_ctrl: the controller node over a bus: NMT master, SYNC producer, PD
- * test law (hil/ctrl.h).
+/* hil_ctrl: the controller node over a bus: NMT master, SYNC producer, the
+ * scenario's law (PD test law, hil/ctrl.h, or ArmCtrl, hil/plc/plc_law.h).
  * Real time (default): SYNC every T by the wall clock; the law runs when the
  * drive's TPDOs are in or at 0.8 T; reports the cycle jitter (SYNC send time
  * minus its schedule) as p50/p99/max and the deadline misses (jitter > T).
@@ -100,7 +100,8 @@ int main(int argc, char **argv)
               "usage: hil_ctrl [options]\n"
               "The controller node: NMT master, SYNC every T (wall clock, or --lockstep), the\n"
               "scenario's ctrl.law (pd: test law with IMU watchdog; armctrl_a: plc_blocks ArmCtrl\n"
-              "Exp. A in the task runtime); prints HIL_STATS and HIL_JITTER (p50/p99/max in us).\n"
+              "Exp. A in the task runtime; armctrl: ArmCtrl from the parameter table ctrl.table);\n"
+              "prints HIL_STATS and HIL_JITTER (p50/p99/max in us).\n"
               "  --cycles N          cycles to run (default: duration / T from the scenario)\n"
               "  --csv FILE          signals as the controller saw them, one row per cycle\n"
               "  --lockstep          pace on the bus (wait for the drive, plant and IMU) instead\n"
