@@ -160,8 +160,10 @@ EffectSetup effect_setup(Effect e, const Context& c)
     const double big = 1e3;
     switch (e) {
     case Effect::input_delay: {
-        s.spec = {{c.Ts, 0, 1e9, true}};
+        // Delays are real (interpolated between samples): the integer grid
+        // gives the starts, Ceres refines the best three.
         const long dmax = std::max<long>(1, std::min<long>(50, long(c.fit_samples / 20)));
+        s.spec = {{c.Ts, 0, double(dmax + 1), false}};
         for (long d = 1; d <= dmax; ++d) s.starts.push_back({double(d)});
         s.screen = true;
         break;
@@ -170,8 +172,8 @@ EffectSetup effect_setup(Effect e, const Context& c)
         // One delay per compared output (sensors have their own latencies):
         // the grid holds every output delayed alike and, with several
         // outputs, each one delayed alone.
-        for (size_t i = 0; i < ny; ++i) s.spec.push_back({c.Ts, 0, 1e9, true});
         const long dmax = std::max<long>(1, std::min<long>(50, long(c.fit_samples / 20)));
+        for (size_t i = 0; i < ny; ++i) s.spec.push_back({c.Ts, 0, double(dmax + 1), false});
         for (long d = 1; d <= dmax; ++d) {
             s.starts.push_back(std::vector<double>(ny, double(d)));
             for (size_t i = 0; ny > 1 && i < ny; ++i) {

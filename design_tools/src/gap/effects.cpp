@@ -176,8 +176,12 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     const double Ts = m.Ts, inf = std::numeric_limits<double>::infinity();
 
     // Effect parameters (absent effects leave the nominal unchanged).
-    int din = 0, dout_max = 0;
-    std::vector<int> dout(size_t(ny), 0);
+    // Delays in samples, real: d = n + f reads (1 - f) x(k - n) + f x(k - n - 1)
+    // (linear interpolation between samples, so that a delay between two
+    // samples, e.g. of a sample-and-hold, is not rounded to one of them).
+    double din = 0;
+    int dout_max = 0;
+    std::vector<double> dout(size_t(ny), 0.0);
     double Fc = 0, Foff = 0, Fv = 0, Sc = 0, Ss = 0, Svs = 1, bl = -1, dz = 0, sat = inf, fc = 0, alpha = 0.5, gain = 1;
     bool stribeck = false, fractional = false, mode = false;
     double f_hz = 1, zeta = 0.1;
@@ -185,12 +189,12 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     for (const EffectInstance& e : effects) {
         const std::vector<double>& p = e.params;
         switch (e.kind) {
-        case Effect::input_delay: din = std::max(0, int(std::lround(p[0] / Ts))); break;
+        case Effect::input_delay: din = std::max(0.0, p[0] / Ts); break;
         case Effect::output_delay:
             for (int c = 0; c < ncmp; ++c) {
-                const int d = std::max(0, int(std::lround(p[size_t(c)] / Ts)));
+                const double d = std::max(0.0, p[size_t(c)] / Ts);
                 dout[size_t(s.compared[size_t(c)])] = d;
-                dout_max = std::max(dout_max, d);
+                dout_max = std::max(dout_max, int(d));
             }
             break;
         case Effect::coulomb_friction: Fc = p[0]; Foff = p[1]; break;
@@ -281,20 +285,23 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
                 for (int j = 0; j < nu; ++j) acc += m.D(i, j) * up[size_t(j)];
             ytrue[size_t(i)] = acc + mode_gain[size_t(i)] * eta[1] / mode_w;
         }
-        if (h_out.len == 0) h_out.init(ny, dout_max + 1, ytrue.data());
+        if (h_out.len == 0) h_out.init(ny, dout_max + 2, ytrue.data());
         h_out.push(ytrue.data());
         for (int i = 0; i < ny; ++i) {
-            double y = h_out.lagged(dout[size_t(i)] + 1)[i] + offset[size_t(i)];
+            const int n = int(dout[size_t(i)]);
+            const double f = dout[size_t(i)] - n;
+            double y = (1 - f) * h_out.lagged(n + 1)[i] + (f > 0 ? f * h_out.lagged(n + 2)[i] : 0.0) + offset[size_t(i)];
             yraw[size_t(i)] = y;
             if (step[size_t(i)] > 0) y = step[size_t(i)] * std::round(y / step[size_t(i)]);
             ysens[size_t(i)] = y;
         }
     };
     auto input_path = [&](double v) {
-        if (h_in.len == 0) h_in.init(nu, din + 1, u.data());
+        if (h_in.len == 0) h_in.init(nu, int(din) + 2, u.data());
         h_in.push(u.data());
-        const double* ud = din > 0 ? h_in.lagged(din + 1) : u.data();
-        for (int j = 0; j < nu; ++j) up[size_t(j)] = ud[j];
+        const int n = int(din);
+        const double fr = din - n;
+        for (int j = 0; j < nu; ++j) up[size_t(j)] = (1 - fr) * h_in.lagged(n + 1)[j] + (fr > 0 ? fr * h_in.lagged(n + 2)[j] : 0.0);
         double a = gain * up[size_t(fi)];
         a = std::min(std::max(a, -sat), sat);
         if (dz > 0) a = std::fabs(a) <= dz ? 0.0 : a - std::copysign(dz, a);
