@@ -83,6 +83,44 @@ static int table_get(struct hil_plant *pl, const frac_ptable *t, const char *nam
     return HIL_OK;
 }
 
+/* The asub steps of a half cycle composed (hil/plant.h): from Ad (column-
+ * major) and Bd, the rows C_2 Ad^k and columns Ad^k Bd (k < asub), the
+ * scalars C_2 Ad^k Bd and Am = Ad^asub. P, Q: n x n scratch. */
+static void compose(struct hil_plant *pl, double *P, double *Q)
+{
+    const unsigned n = pl->an, m = pl->asub;
+    unsigned i, j, l, k;
+    for (j = 0; j < n; j++)
+        for (i = 0; i < n; i++)
+            P[j * n + i] = i == j ? 1.0 : 0.0;
+    for (k = 0; k < m; k++) {
+        double *r = pl->vrow + (size_t)k * n, *b = pl->bcol + (size_t)k * n;
+        for (j = 0; j < n; j++) {
+            double a = 0.0;
+            for (i = 0; i < n; i++)
+                a += pl->C[n + i] * P[j * n + i];
+            r[j] = a;
+        }
+        for (i = 0; i < n; i++)
+            b[i] = 0.0;
+        for (j = 0; j < n; j++)
+            for (i = 0; i < n; i++)
+                b[i] += P[j * n + i] * pl->Bd[j];
+        pl->vb[k] = 0.0;
+        for (j = 0; j < n; j++)
+            pl->vb[k] += r[j] * pl->Bd[j];
+        for (j = 0; j < n; j++) /* Q = Ad P */
+            for (i = 0; i < n; i++) {
+                double a = 0.0;
+                for (l = 0; l < n; l++)
+                    a += pl->Ad[l * n + i] * P[j * n + l];
+                Q[j * n + i] = a;
+            }
+        memcpy(P, Q, (size_t)n * n * sizeof *P);
+    }
+    memcpy(pl->Am, P, (size_t)n * n * sizeof *P);
+}
+
 /* Loads the arm plant table (hil/plant.h, docs/hil.md) into pl. */
 static int load_arm(struct hil_plant *pl)
 {
@@ -114,7 +152,8 @@ static int load_arm(struct hil_plant *pl)
                           t.fail_field, t.fail_entry, ename);
         return refuse(pl, "plant.table %s: %s (field %s)", pl->p.table, frac_status_str(st), t.fail_field);
     }
-    tmp = (frac_real *)malloc(sizeof(frac_real) * HIL_PLANT_ARM_NMAX * HIL_PLANT_ARM_NMAX);
+    /* frac_real scratch, also the double scratch of compose (sizeof(double) >= sizeof(frac_real)) */
+    tmp = (frac_real *)malloc(sizeof(double) * HIL_PLANT_ARM_NMAX * HIL_PLANT_ARM_NMAX);
     Ac = (double *)malloc(sizeof(double) * HIL_PLANT_ARM_NMAX * HIL_PLANT_ARM_NMAX);
     st = !tmp || !Ac ? refuse(pl, "plant.table %s: out of memory", pl->p.table) : HIL_OK;
     if (st == HIL_OK && (st = table_get(pl, &t, "plant_dims", 1, 2, tmp, v)) == HIL_OK &&
@@ -125,9 +164,12 @@ static int load_arm(struct hil_plant *pl)
     n = st == HIL_OK ? (unsigned)v[0] : 0;
     if (st == HIL_OK && (st = table_get(pl, &t, "h", 1, 1, tmp, v)) == HIL_OK) {
         m = floor(half / v[0] + 0.5);
-        if (!(v[0] > 0.0) || m < 1.0 || m > 1000.0 || fabs(m * v[0] - half) > 1e-9 * half)
+        if (!(v[0] > 0.0) || m < 1.0 || fabs(m * v[0] - half) > 1e-9 * half)
             st = refuse(pl, "plant.table %s: h = %g s does not divide the half cycle T/2 = %g s", pl->p.table, v[0],
                         half);
+        else if (m > HIL_PLANT_ARM_SUBMAX)
+            st = refuse(pl, "plant.table %s: h = %g s: more than %d steps per half cycle T/2 = %g s", pl->p.table,
+                        v[0], HIL_PLANT_ARM_SUBMAX, half);
         pl->ah = v[0];
         pl->asub = (unsigned)m;
     }
@@ -155,6 +197,7 @@ static int load_arm(struct hil_plant *pl)
             pl->acc_b += pl->C[3 * n + j] * pl->ay[j];
             pl->ay[j] = 0.0;
         }
+        compose(pl, Ac, (double *)tmp);
     }
     free(tmp);
     free(Ac);
@@ -288,33 +331,45 @@ static void rk4(struct hil_plant *pl, double h, double tau0, double slope, unsig
     pl->psi_dd = k1[3] + k1[5];
 }
 
-/* Arm: the table's ZOH steps over [0, T/2] with torque tau(s) = tau0 + slope * s
- * held at its value in the middle of each step. */
+/* Arm: the table's m = asub ZOH steps over [0, T/2] with torque
+ * tau(s) = tau0 + slope * s held at its value in the middle of each step,
+ * composed: the friction input of step k from the motor velocity
+ *   v_k = C_2 Ad^k x_0 + sum_{j<k} C_2 Ad^(k-1-j) Bd u_j,
+ * then x_m = Ad^m x_0 + sum_k Ad^(m-1-k) Bd u_k (one n x n product per half
+ * cycle instead of m). */
 static void arm_half(struct hil_plant *pl, double tau0, double slope)
 {
-    const unsigned n = pl->an;
-    double *x = pl->ax, *y = pl->ay, u = 0.0, h = pl->ah;
+    const unsigned n = pl->an, m = pl->asub;
+    double *x = pl->ax, *y = pl->ay, u[HIL_PLANT_ARM_SUBMAX], h = pl->ah;
     unsigned k, i, j;
-    for (k = 0; k < pl->asub; k++) {
+    for (k = 0; k < m; k++) {
         frac_real tf = 0;
+        const double *r = pl->vrow + (size_t)k * n;
         double w = 0.0;
         for (j = 0; j < n; j++)
-            w += pl->C[n + j] * x[j];
+            w += r[j] * x[j];
+        for (j = 0; j < k; j++)
+            w += pl->vb[k - 1 - j] * u[j];
         frac_friction_eval(&pl->fric, (frac_real)w, &tf);
-        u = tau0 + slope * ((double)k + 0.5) * h - (double)tf;
-        /* y = Bd u + sum_j Ad(:, j) x_j: each y_i sums in the order of the
-         * row product, and the inner loop over i vectorizes */
-        for (i = 0; i < n; i++)
-            y[i] = pl->Bd[i] * u;
-        for (j = 0; j < n; j++) {
-            const double *a = pl->Ad + (size_t)j * n, xj = x[j];
-            for (i = 0; i < n; i++)
-                y[i] += a[i] * xj;
-        }
-        memcpy(x, y, n * sizeof *x);
+        u[k] = tau0 + slope * ((double)k + 0.5) * h - (double)tf;
     }
+    /* y = sum_j Am(:, j) x_j + sum_k Ad^(m-1-k) Bd u_k (inner loops over i
+     * vectorize) */
+    for (i = 0; i < n; i++)
+        y[i] = 0.0;
+    for (j = 0; j < n; j++) {
+        const double *a = pl->Am + (size_t)j * n, xj = x[j];
+        for (i = 0; i < n; i++)
+            y[i] += a[i] * xj;
+    }
+    for (k = 0; k < m; k++) {
+        const double *b = pl->bcol + (size_t)(m - 1 - k) * n, uk = u[k];
+        for (i = 0; i < n; i++)
+            y[i] += b[i] * uk;
+    }
+    memcpy(x, y, n * sizeof *x);
     {
-        double o[4] = {0.0, 0.0, 0.0, 0.0}, acc = pl->acc_b * u;
+        double o[4] = {0.0, 0.0, 0.0, 0.0}, acc = pl->acc_b * u[m - 1];
         for (i = 0; i < 4; i++)
             for (j = 0; j < n; j++)
                 o[i] += pl->C[i * n + j] * x[j];

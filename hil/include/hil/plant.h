@@ -39,10 +39,13 @@
  *    plant table `table` that `fracdesign model arm --full --save-plant`
  *    writes (docs/hil.md): x <- Ad x + Bd (tau - tau_f(theta_M')) per step h
  *    of the table (Ad, Bd: exact ZOH of the continuous arm at h), h dividing
- *    T/2; tau is the shaft torque at the middle of the step (linear over the
- *    cycle as above), tau_f the motor friction by frac/friction.h at the
- *    velocity at the start of the step (explicit, first order in h; the
- *    friction's time constant I_M / (b0 k) = 13 ms at Table 8.6 is ~85 h).
+ *    T/2 in at most HIL_PLANT_ARM_SUBMAX steps; tau is the shaft torque at
+ *    the middle of the step (linear over the cycle as above), tau_f the
+ *    motor friction by frac/friction.h at the velocity at the start of the
+ *    step (explicit, first order in h; the friction's time constant
+ *    I_M / (b0 k) = 13 ms at Table 8.6 is ~85 h). The steps of a half cycle
+ *    are composed (Ad^k precomputed at init): one n x n product per half
+ *    cycle, the velocities from the rows C_2 Ad^k.
  *    Outputs C x: theta_M, theta_M', tip angle psi_L, tip rate psi_L'; tip
  *    tangential acceleration L psi_L'' with psi_L'' = C_4 (Ac x + Bc u).
  *    backlash, the extra mode and Kelvin-Voigt damping are twomass effects:
@@ -57,6 +60,7 @@ enum hil_plant_model { HIL_PLANT_RIGID = 0, HIL_PLANT_TWOMASS = 1, HIL_PLANT_ARM
 
 #define HIL_PLANT_KV_MAX 1000 /* most Grunwald-Letnikov terms of the Kelvin-Voigt effect */
 #define HIL_PLANT_ARM_NMAX 128 /* most states of the arm plant (N <= 31) */
+#define HIL_PLANT_ARM_SUBMAX 32 /* most ZOH steps per half cycle (h >= T/64) */
 #define HIL_PLANT_TABLE_MAX (8u << 20) /* largest plant table file [bytes] */
 #define HIL_PLANT_PATH_MAX 256
 
@@ -94,6 +98,10 @@ struct hil_plant {
     unsigned an, aN, asub;     /* states, collocation points, ZOH steps per half cycle */
     double ah;                 /* ZOH step [s] */
     double Ad[HIL_PLANT_ARM_NMAX * HIL_PLANT_ARM_NMAX], Bd[HIL_PLANT_ARM_NMAX];
+    double Am[HIL_PLANT_ARM_NMAX * HIL_PLANT_ARM_NMAX]; /* Ad^asub, column-major */
+    double vrow[HIL_PLANT_ARM_SUBMAX * HIL_PLANT_ARM_NMAX]; /* rows C_2 Ad^k, k < asub */
+    double bcol[HIL_PLANT_ARM_SUBMAX * HIL_PLANT_ARM_NMAX]; /* columns Ad^k Bd, k < asub */
+    double vb[HIL_PLANT_ARM_SUBMAX];                      /* C_2 Ad^k Bd */
     double C[4 * HIL_PLANT_ARM_NMAX];
     double acc_row[HIL_PLANT_ARM_NMAX], acc_b; /* psi_L'' = acc_row x + acc_b u (C_4 Ac, C_4 Bc) */
     double ax[HIL_PLANT_ARM_NMAX], ay[HIL_PLANT_ARM_NMAX]; /* state, scratch */

@@ -100,7 +100,7 @@ static void test_bad_tables_are_refused_with_the_field_named(void **state)
     char path[512];
     static unsigned char w[4096];
     const double small[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, dims[2] = {40, 9}, dims_bad[2] = {41, 9}, h = 1.5e-4,
-                 h_bad = 1.7e-4;
+                 h_bad = 1.7e-4, h_fine = 1.5e-5;
     ptw_entry e[3];
     (void)state;
     assert_non_null(c);
@@ -145,6 +145,10 @@ static void test_bad_tables_are_refused_with_the_field_named(void **state)
     e[1].values = &h_bad;
     spit(path, w, ptw_write(w, sizeof w, "arm_plant", e, 3));
     expect_refused(path, "does not divide");
+    /* a step too fine for the composed half cycle (40 steps > 32) */
+    e[1].values = &h_fine;
+    spit(path, w, ptw_write(w, sizeof w, "arm_plant", e, 3));
+    expect_refused(path, "more than 32 steps");
     /* entry missing */
     spit(path, w, ptw_write(w, sizeof w, "arm_plant", e, 1));
     expect_refused(path, "entry 'h' missing");
@@ -179,7 +183,8 @@ static void test_twomass_effects_and_missing_table_are_refused(void **state)
 }
 
 /* x[k] = Ad^k x[0] with the table's own Ad, step by step, against the
- * plant's state after the same number of steps at zero torque. */
+ * plant's state after the same number of steps at zero torque (the plant
+ * composes the steps of a half cycle: equal to rounding, 1e-12 relative). */
 static void test_free_response_is_the_tables_discrete_model(void **state)
 {
     struct hil_plant_params p;
