@@ -6,7 +6,8 @@
  * each half the plant sends RIG_TIPPOS(tip angle, radial acc) and
  * RIG_TIP(tip rate, tangential acc); after the second also RIG_MOTOR(shaft
  * angle, shaft velocity), the state at t_{k+1} the drive reports at the next
- * SYNC. Integration: classical RK4, `substeps` steps per half cycle.
+ * SYNC. Integration: rigid and twomass classical RK4, `substeps` steps per
+ * half cycle; arm the table's exact ZOH steps (below).
  *
  * Three named plants:
  *  - "rigid" (TEST plant): one rigid inertia J with viscous friction b,
