@@ -128,7 +128,7 @@ static int load_arm(struct hil_plant *pl)
     unsigned char *bytes;
     frac_ptable t;
     frac_real *tmp;
-    double v[2], *Ac;
+    double v[2] = {0.0, 0.0}, *Ac;
     unsigned n, i, j;
     double half = 0.5 * pl->p.T, m;
     int st;
