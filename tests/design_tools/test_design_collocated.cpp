@@ -87,3 +87,20 @@ TEST(DesignCollocated, PrefilterSearchFromThePaperPointDoesNotLoseBand)
     const double check = flat_band([&](double w) { return closed_loop_tip(L, r.F, p, w); });
     EXPECT_NEAR(check, r.band, 1e-9);
 }
+
+TEST(DesignCollocated, GlobalPrefilterSearchFindsThePaperBandWithoutAStart)
+{
+    // The band is a knife edge in f_n (0.5 % off 0.116 drops it below 6 rad/s): a search on the
+    // band itself stalls at 7.09 rad/s; the minimax search reaches the band of the printed (52).
+    const CollocatedPlant p = collocated_plant(0.12);
+    const FdDesign d = design_fd(p, 70 * kDeg, 10.0, 0.8);
+    const auto L = [&](double w) { return loop_fd(d, p, w, true); };
+    const auto r = optimise_prefilter(L, p, 1.0, 0.3);
+    EXPECT_GE(r.band, 7.515 - 1e-3);
+    EXPECT_NEAR(r.F.fn, 0.116, 0.116 * 0.02);
+    EXPECT_NEAR(r.F.beta, 0.55, 0.55 * 0.02);
+    const Prefilter off{r.F.fn * 1.005, r.F.fd, r.F.beta};
+    EXPECT_LT(flat_band([&](double w) { return closed_loop_tip(L, off, p, w); }), 7.0) << "not a knife edge any more?";
+    EXPECT_THROW(optimise_prefilter(L, p, 1.0, 0.0), std::invalid_argument);
+    EXPECT_THROW(optimise_prefilter(L, p, 0.0, 0.3), std::invalid_argument);
+}

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <complex>
 
 #include "fracdesign/design/lqg.hpp"
 
@@ -107,12 +108,48 @@ TEST(DesignLqg, ClosedLoopIsStableOnReducedAndUnreducedArm)
 
 TEST(DesignLqg, ExpCWithoutDelaysStabilisesItsDesignModel)
 {
-    // Table 8.7 weights, no delays. (On the unreduced arm this design is marginally unstable,
-    // spectral radius 1 + 3e-5, from high-mode spillover: reported by `fracdesign lqg --exp C`.)
+    // Table 8.7 weights, no delay model.
     const LqgDesign d = design_lqg(arm(true), LqgParams::exp_c());
     EXPECT_EQ(d.K.cols(), 16);
     EXPECT_EQ(d.Le.rows(), 17);
     EXPECT_LT(check_closed_loop(d, arm(true)).spectral_radius, 1.0);
+}
+
+TEST(DesignLqg, ExpCIsStableOnTheUnreducedArmWithTheRigDelays)
+{
+    // Exp. C has no delay model but ran on the rig with T_i = 4 T, T_o = 3 T (Table 8.8): the check
+    // closes the loop on the plant with those delays (the controller keeps d_i = d_o = 0).
+    const LqgDesign d = design_lqg(arm(true), LqgParams::exp_c());
+    const LoopCheck r = check_closed_loop(d, arm(true), kRigDi, kRigDo);
+    const LoopCheck f = check_closed_loop(d, arm(false), kRigDi, kRigDo);
+    EXPECT_EQ(r.plant_states, 16 + 4 + 3);
+    EXPECT_EQ(f.plant_states, 40 + 4 + 3);
+    EXPECT_EQ(f.plant_di, 4);
+    EXPECT_EQ(f.plant_do, 3);
+    EXPECT_LT(r.spectral_radius, 1.0);
+    EXPECT_LT(f.spectral_radius, 1.0);
+    EXPECT_GT(r.gain_margin_db, 6.0);
+    EXPECT_GT(r.phase_margin_deg, 20.0);
+}
+
+TEST(DesignLqg, DampedRigidBodyModeIsWeightedLikeTheUndampedJordanChain)
+{
+    // With r_t > 0 the rigid-body mode splits into 0 and -0.047 rad/s with nearly parallel
+    // eigenvectors; weighting those directly left the angle error a controller pole at
+    // -0.033 rad/s (30 s). The orthonormal basis of their span gives the undamped design's poles.
+    auto slowest = [](const LqgDesign& d) {
+        Eigen::EigenSolver<MatrixXd> es(d.Ad - d.Bd * d.K, false);
+        double s = 1e9;
+        for (Eigen::Index i = 0; i < es.eigenvalues().size(); ++i)
+            s = std::min(s, std::abs(std::log(std::complex<double>(es.eigenvalues()(i)))) / d.params.T);
+        return s;
+    };
+    const LqgDesign damped = design_lqg(arm(true, 0.5), LqgParams::exp_d());
+    const LqgDesign undamped = design_lqg(arm(true, 0.0), LqgParams::exp_d());
+    EXPECT_GT(slowest(damped), 0.1);
+    EXPECT_NEAR(slowest(damped), slowest(undamped), 0.01 * slowest(undamped));
+    const MatrixXd V = modal_basis(arm(true, 0.5).A);
+    EXPECT_NEAR(V.col(0).dot(V.col(1)), 0.0, 1e-12);
 }
 
 TEST(DesignLqg, BadParametersAreRefused)

@@ -32,7 +32,8 @@ int to_int(const Args& args, const char* key, long def, long lo, long hi, const 
 nlohmann::json loop_json(const design::LoopCheck& c)
 {
     auto fin = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
-    return {{"plant_states", c.plant_states}, {"spectral_radius", c.spectral_radius},
+    return {{"plant_states", c.plant_states}, {"plant_di", c.plant_di}, {"plant_do", c.plant_do},
+            {"spectral_radius", c.spectral_radius}, {"critical_w", c.critical_w},
             {"stable", c.spectral_radius < 1.0}, {"gain_margin_db", fin(c.gain_margin_db)},
             {"phase_margin_deg", fin(c.phase_margin_deg)}, {"modulus_margin", fin(c.modulus_margin)}};
 }
@@ -143,10 +144,11 @@ int run_armctrl(const std::vector<std::string>& argv)
         if (d.lqg)
             for (const auto& [name, c] : {std::pair<const char*, design::LoopCheck>{"reduced", d.check_reduced},
                                           {"unreduced", d.check_unreduced}})
-                std::printf("  LQG closed loop on the %s arm (%d states): spectral radius %.9f (%s), GM %.2f dB, "
-                            "PM %.2f deg\n",
-                            name, c.plant_states, c.spectral_radius, c.spectral_radius < 1.0 ? "stable" : "UNSTABLE",
-                            c.gain_margin_db, c.phase_margin_deg);
+                std::printf("  LQG closed loop on the %s arm with the rig's delays d_i = %d, d_o = %d (%d states): "
+                            "spectral radius %.9f (%s), GM %.2f dB, PM %.2f deg, min|1+L| %.3f\n",
+                            name, c.plant_di, c.plant_do, c.plant_states, c.spectral_radius,
+                            c.spectral_radius < 1.0 ? "stable" : "UNSTABLE", c.gain_margin_db, c.phase_margin_deg,
+                            c.modulus_margin);
         std::printf("  table '%s' (%zu entries, %s) -> %s [%s, %zu bytes]\n", d.table.name.c_str(),
                     d.table.entries.size(), tables::to_string(d.table.real).c_str(), out.c_str(), format.c_str(), bytes);
     }

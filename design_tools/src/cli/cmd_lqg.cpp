@@ -1,4 +1,5 @@
 // cmd_lqg.cpp - `fracdesign lqg`: seed 004 state-difference LQG with delays (Exp. C / D).
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -13,7 +14,7 @@ namespace {
 int run_lqg(const std::vector<std::string>& argv)
 {
     Args args(argv, {"json"});
-    args.check_known({"json", "exp", "T", "di", "do", "rt", "rr", "out"});
+    args.check_known({"json", "exp", "T", "di", "do", "rt", "rr", "out", "plant-di", "plant-do"});
     const std::string exp = args.str("exp", "D");
     if (exp != "C" && exp != "D") throw UsageError("--exp must be C or D");
     design::LqgParams p = exp == "C" ? design::LqgParams::exp_c() : design::LqgParams::exp_d();
@@ -25,6 +26,10 @@ int run_lqg(const std::vector<std::string>& argv)
     beam.r_t = args.num("rt", 0.5);
     beam.r_r = args.num("rr", 0.0);
     if (!(p.T > 0.0) || p.di < 0 || p.dout < 0) throw UsageError("need --T > 0 and --di, --do >= 0");
+    // The loop is checked on the plant with the rig's delays (Table 8.8), whatever the controller models.
+    const int plant_di = static_cast<int>(args.integer("plant-di", design::kRigDi));
+    const int plant_do = static_cast<int>(args.integer("plant-do", design::kRigDo));
+    if (plant_di < 0 || plant_do < 0) throw UsageError("need --plant-di, --plant-do >= 0");
     try {
         beam.validate();
     } catch (const std::invalid_argument& e) {
@@ -41,15 +46,19 @@ int run_lqg(const std::vector<std::string>& argv)
         std::cerr << "fracdesign lqg: Riccati equation has no stabilising solution: " << e.what() << "\n";
         return 1;
     }
-    const auto cr = design::check_closed_loop(d, reduced);
-    const auto cf = design::check_closed_loop(d, full);
+    const auto cn = design::check_closed_loop(d, reduced);  // the design's own loop (its delay model)
+    const auto cr = design::check_closed_loop(d, reduced, plant_di, plant_do);
+    const auto cf = design::check_closed_loop(d, full, plant_di, plant_do);
     nlohmann::json j = design::to_json(d);
     j["beam_damping"] = {{"r_t", beam.r_t}, {"r_r", beam.r_r}};
     auto loop = [](const design::LoopCheck& c) {
-        return nlohmann::json{{"plant_states", c.plant_states}, {"spectral_radius", c.spectral_radius},
-                              {"stable", c.spectral_radius < 1.0}, {"gain_margin_db", c.gain_margin_db},
-                              {"phase_margin_deg", c.phase_margin_deg}, {"modulus_margin", c.modulus_margin}};
+        auto fin = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+        return nlohmann::json{{"plant_states", c.plant_states}, {"plant_di", c.plant_di}, {"plant_do", c.plant_do},
+                              {"spectral_radius", c.spectral_radius}, {"critical_w", c.critical_w},
+                              {"stable", c.spectral_radius < 1.0}, {"gain_margin_db", fin(c.gain_margin_db)},
+                              {"phase_margin_deg", fin(c.phase_margin_deg)}, {"modulus_margin", fin(c.modulus_margin)}};
     };
+    j["check_nominal"] = loop(cn);
     j["check_reduced"] = loop(cr);
     j["check_unreduced"] = loop(cf);
     if (args.has("out")) {
@@ -64,11 +73,13 @@ int run_lqg(const std::vector<std::string>& argv)
                     p.dout, beam.r_t, beam.r_r);
         std::printf("  K: %ld x %ld, L_e: %ld x %ld; DARE residuals %.2e (K), %.2e (L_e)\n", long(d.K.rows()),
                     long(d.K.cols()), long(d.Le.rows()), long(d.Le.cols()), d.ctrl.residual, d.obs.residual);
-        for (const auto& [name, c] : {std::pair<const char*, design::LoopCheck>{"reduced", cr}, {"unreduced", cf}})
-            std::printf("  closed loop on the %s arm (%d states): spectral radius %.9f (%s), GM %.2f dB, PM %.2f deg, "
-                        "min|1+L| %.3f\n",
-                        name, c.plant_states, c.spectral_radius, c.spectral_radius < 1.0 ? "stable" : "UNSTABLE",
-                        c.gain_margin_db, c.phase_margin_deg, c.modulus_margin);
+        for (const auto& [name, c] : {std::pair<const char*, design::LoopCheck>{"reduced", cn}, {"reduced", cr},
+                                      {"unreduced", cf}})
+            std::printf("  closed loop on the %s arm, plant d_i = %d, d_o = %d (%d states): spectral radius %.9f (%s, "
+                        "at %.1f rad/s), GM %.2f dB, PM %.2f deg, min|1+L| %.3f\n",
+                        name, c.plant_di, c.plant_do, c.plant_states, c.spectral_radius,
+                        c.spectral_radius < 1.0 ? "stable" : "UNSTABLE", c.critical_w, c.gain_margin_db,
+                        c.phase_margin_deg, c.modulus_margin);
         if (args.has("out")) std::printf("  design written to %s (fracdesign table emit --in it)\n", args.str("out").c_str());
     }
     return cf.spectral_radius < 1.0 ? 0 : 1;
@@ -76,13 +87,16 @@ int run_lqg(const std::vector<std::string>& argv)
 
 CommandRegistrar reg({"lqg", "state-difference LQG with delays for the flexible arm (seed 004 Exp. C/D)",
                       "usage: fracdesign lqg [--exp C|D] [--T S] [--di N] [--do N] [--rt R] [--rr R]\n"
-                      "                      [--out DESIGN.json] [--json]\n\n"
+                      "                      [--plant-di N] [--plant-do N] [--out DESIGN.json] [--json]\n\n"
                       "Designs K and L_e for the Krylov-reduced arm (16 states) with the weights of\n"
                       "Table 8.7 (C: no delay) or 8.8 (D: T = 1.2 ms, d_i = 4, d_o = 3): ZOH, delay\n"
                       "augmentation, modal weights (real modal form, |lambda| ascending), dlqr for K,\n"
                       "dual DARE for the predictor gain L_e of the model with the integrating friction\n"
-                      "state. Checks the closed loop (stability, GM, PM, min|1+L| at the plant input)\n"
-                      "on the reduced and on the unreduced (N = 9, 40 states) arm with the delays.\n"
+                      "state. Checks the closed loop (stability, GM, PM, min|1+L| at the plant input,\n"
+                      "lightly damped beam modes resolved at their aliased frequencies): the design's own\n"
+                      "loop (reduced arm, its delay model), then the reduced and the unreduced (N = 9,\n"
+                      "40 states) arm with the rig's delays --plant-di/--plant-do (default 4, 3, Table\n"
+                      "8.8: the delays are the plant's, so Exp. C is checked with them too).\n"
                       "--rt/--rr: beam damping, not given by the thesis (default 0.5, 0).\n"
                       "Exit status 1 if a Riccati equation fails (cause named) or the unreduced loop is unstable.\n",
                       run_lqg});

@@ -179,7 +179,8 @@ CommandRegistrar reg({"tune", "fractional controller tuning (seed 001 FO-PI/FO-P
                       "(1 + 0.0071 s)^2 instead of 1 + 0.0142 s. Reports the nominal modal crossovers and\n"
                       "margins and the crossover range over m2 (default [0.01, 0.23] lb); --prefilter\n"
                       "optimises F = (1 + fn s^beta)/(1 + fd s) for the widest +-0.3 dB band of |H|\n"
-                      "(local pattern search; --prefilter-start fn,fd,beta adds a starting point).\n"
+                      "(global search on the minimax form of the band, notes 002 section 8;\n"
+                      "--prefilter-start fn,fd,beta adds a starting point).\n"
                       "A w_c0 not covered by Theorem 5 is reported infeasible with the ranges (exit 1).\n",
                       run_tune});
 

@@ -167,8 +167,10 @@ ArmctrlDesign design_armctrl(const ArmctrlSpec& spec_in)
                                         " exceeds the PLC's FRAC_MAT_MAX = 64: smaller --di/--do");
         d.lqg = design_lqg(reduced, p);
         const LqgDesign& g = *d.lqg;
-        d.check_reduced = check_closed_loop(g, reduced);
-        d.check_unreduced = check_closed_loop(g, wang_arm_measured(s.N, s.r_t, s.r_r, false));
+        // Checked on the plant with the rig's delays (Table 8.8), also for Exp. C, whose controller has
+        // no delay model: the delays belong to the plant.
+        d.check_reduced = check_closed_loop(g, reduced, kRigDi, kRigDo);
+        d.check_unreduced = check_closed_loop(g, wang_arm_measured(s.N, s.r_t, s.r_r, false), kRigDi, kRigDo);
         // frac/lqg.h takes the plant part of (7.18): A' = top-left of A_bar, B' = the block that feeds
         // xi_1 (d_i > 0) or B_bar's plant rows (d_i = 0), C' with the IMU row from the beta chain input.
         d.A = g.Ad.topLeftCorner(n, n);

@@ -3,7 +3,11 @@
 #include "fracdesign/design/collocated.hpp"
 
 #include <algorithm>
+#include <vector>
+#include <numeric>
+#include <array>
 #include <cmath>
+#include <random>
 #include <limits>
 #include <stdexcept>
 
@@ -183,60 +187,152 @@ PrefilterResult optimise_prefilter(const std::function<cplx(double)>& L, const C
                                    double tol_db, const Prefilter* start)
 {
     if (!(beta_max > 0.0)) throw std::invalid_argument("beta_max must be > 0");
+    if (!(tol_db > 0.0)) throw std::invalid_argument("tol_db must be > 0");
     if (start && !(start->fn > 0.0 && start->fd > 0.0 && start->beta > 0.0 && start->beta <= beta_max))
         throw std::invalid_argument("prefilter start needs f_n > 0, f_d > 0, 0 < beta <= beta_max");
     PrefilterResult best;
-    struct Point {
-        double lfn, lfd, beta, v;
-    };
-    auto eval = [&](double lfn, double lfd, double beta) {
-        ++best.evaluations;
-        const Prefilter F{std::exp(lfn), std::exp(lfd), beta};
-        return flat_band([&](double w) { return closed_loop_tip(L, F, p, w, true); }, tol_db);
-    };
-    // Starts: the caller's point (if any) and the 6 best points of a coarse grid
-    // (f_n in [1e-3, 1], f_d in [1e-3, 0.3], beta in (0, beta_max]).
-    std::vector<Point> grid;
-    for (int i = 0; i < 16; ++i)
-        for (int j = 0; j < 13; ++j)
-            for (int k = 1; k <= 12; ++k) {
-                const double lfn = std::log(1e-3) + i * std::log(1e3) / 15.0;
-                const double lfd = std::log(1e-3) + j * std::log(300.0) / 12.0;
-                const double beta = beta_max * k / 12.0;
-                grid.push_back({lfn, lfd, beta, eval(lfn, lfd, beta)});
-            }
-    std::sort(grid.begin(), grid.end(), [](const Point& a, const Point& b) { return a.v > b.v; });
-    grid.resize(6);
-    if (start) {
-        const double lfn = std::log(start->fn), lfd = std::log(start->fd);
-        grid.insert(grid.begin(), Point{lfn, lfd, start->beta, eval(lfn, lfd, start->beta)});
+    // The band is a knife edge in f_n: at the optimum the ripple of |H| touches +-tol at two
+    // frequencies (a low-frequency dip and the peak near 5.75 rad/s), and changing f_n by 0.5 %
+    // drops the band from 7.5 to 1.9 or 5.5 rad/s. Any search on the band itself (grid or local)
+    // steps over that edge. So the search works on the minimax form: for given (f_d, beta),
+    //   r(f_n, W) = max_{w <= W} | 20 log10 |H(j w)| |  is the max of a part falling and a part
+    //   rising with f_n (dip and peak), so min over f_n is found by a scan + golden section, and
+    //   B(f_d, beta) = the largest W with min_{f_n} r(f_n, W) <= tol (bisection in log W)
+    // is the best band reachable at (f_d, beta), continuous in them. B is maximised globally:
+    // a grid over (log f_d, beta), then Nelder-Mead from the 3 best grid points (and the
+    // caller's start). H = F(j w) B_0(j w) with B_0 = G_m G_2/(1 + L) cached on the grid of
+    // flat_band (1e-3 rad/s x 1.005^k), so one evaluation of r costs no loop evaluation.
+    constexpr double kRatio = 1.005, kWTop = 100.0;
+    std::vector<double> wg, lw, b2;  // w, log w, |B_0|^2
+    const Prefilter unit{0.0, 0.0, 1.0};
+    for (double w = 1e-3; w <= kWTop; w *= kRatio) {
+        wg.push_back(w);
+        lw.push_back(std::log(w));
+        b2.push_back(std::norm(closed_loop_tip(L, unit, p, w, true)));
     }
-    // Pattern search over all 26 neighbour directions in (log f_n, log f_d, beta): the band is
-    // discontinuous (it collapses when a ripple peak leaves the band) and its optimum sits on a
-    // ridge between two active ripple constraints, so diagonal moves are needed. Move to the best
-    // improving neighbour; halve the steps when none improves. The result is a local optimum.
-    Point bestp = grid.front();
-    for (Point c : grid) {
-        double step = 0.2, bstep = 0.04;
-        while (step > 1e-4) {
-            Point next = c;
-            for (int dx = -1; dx <= 1; ++dx)
-                for (int dy = -1; dy <= 1; ++dy)
-                    for (int db = -1; db <= 1; ++db) {
-                        const double beta = c.beta + db * bstep;
-                        if ((dx == 0 && dy == 0 && db == 0) || !(beta > 0.0 && beta <= beta_max)) continue;
-                        const double v = eval(c.lfn + dx * step, c.lfd + dy * step, beta);
-                        if (v > next.v + 1e-9) next = {c.lfn + dx * step, c.lfd + dy * step, beta, v};
-                    }
-            if (next.v > c.v)
-                c = next;
-            else
-                step *= 0.5, bstep *= 0.5;
+    // |F(j w)|^2 = (1 + 2 a cos(pi beta/2) + a^2)/(1 + (f_d w)^2), a = f_n w^beta: real arithmetic;
+    // the ripple in dB from the extreme |H|^2 (one log per evaluation).
+    auto ripple = [&](double lfn, double lfd, double beta, double W) {
+        ++best.evaluations;
+        const double fd2 = std::exp(2.0 * lfd), c2 = 2.0 * std::cos(beta * kPi / 2.0);
+        auto h2 = [&](double w, double l, double bb) {
+            const double a = std::exp(lfn + beta * l);
+            return (1.0 + a * (c2 + a)) / (1.0 + fd2 * w * w) * bb;
+        };
+        // the grid points below W and W itself, so that r is continuous in W
+        double hi = h2(W, std::log(W), std::norm(closed_loop_tip(L, unit, p, W, true))), lo = hi;
+        for (size_t i = 0; i < wg.size() && wg[i] < W; ++i) {
+            const double v = h2(wg[i], lw[i], b2[i]);
+            hi = std::max(hi, v);
+            lo = std::min(lo, v);
         }
-        if (c.v > bestp.v) bestp = c;
+        return std::max(10.0 * std::log10(hi), -10.0 * std::log10(lo));
+    };
+    const double lfn_lo = std::log(1e-3), lfn_hi = std::log(1.0);
+    // min over log f_n of r: a scan (25 points over [1e-3, 1], or 7 points of 0.05 around a
+    // previous optimum `*lfn_best` when `warm`), then golden section in the best bracket.
+    auto fn_min = [&](double lfd, double beta, double W, double* lfn_best, bool warm) {
+        const int n_scan = warm ? 7 : 25;
+        const double h = warm ? 0.05 : (lfn_hi - lfn_lo) / 24.0, x0 = warm ? *lfn_best - 3 * h : lfn_lo;
+        int ib = 0;
+        double fb = std::numeric_limits<double>::infinity();
+        for (int i = 0; i < n_scan; ++i) {
+            const double v = ripple(x0 + i * h, lfd, beta, W);
+            if (v < fb) fb = v, ib = i;
+        }
+        double a = x0 + std::max(0, ib - 1) * h, b = x0 + std::min(n_scan - 1, ib + 1) * h;
+        const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+        double x1 = b - g * (b - a), x2 = a + g * (b - a);
+        double f1 = ripple(x1, lfd, beta, W), f2 = ripple(x2, lfd, beta, W);
+        while (b - a > 1e-4) {
+            if (f1 < f2) {
+                b = x2, x2 = x1, f2 = f1, x1 = b - g * (b - a), f1 = ripple(x1, lfd, beta, W);
+            } else {
+                a = x1, x1 = x2, f1 = f2, x2 = a + g * (b - a), f2 = ripple(x2, lfd, beta, W);
+            }
+        }
+        const double xm = f1 < f2 ? x1 : x2, fm = std::min(f1, f2);
+        *lfn_best = fm <= fb ? xm : x0 + ib * h;
+        return std::min(fm, fb);
+    };
+    // B(f_d, beta): bisection in log W on [1, 20] rad/s (the -3 dB bandwidth is about 10) to 2e-4
+    // relative; 0 if not even W = 1 is reachable. Also returns the f_n that reaches it.
+    auto band_at = [&](double lfd, double beta, double* lfn_out) {
+        if (!(beta > 0.0 && beta <= beta_max) || !(lfd > std::log(1e-6) && lfd < std::log(10.0))) return 0.0;
+        double lo = 0.0, hi = std::log(20.0), lfn = 0.0;
+        if (fn_min(lfd, beta, 1.0, &lfn, false) > tol_db) return 0.0;
+        *lfn_out = lfn;
+        bool first = true;
+        while (hi - lo > 2e-4) {
+            const double mid = 0.5 * (lo + hi);
+            double l = *lfn_out;
+            if (fn_min(lfd, beta, std::exp(mid), &l, !first) <= tol_db) {
+                lo = mid;
+                *lfn_out = l;
+                first = false;
+            } else {
+                hi = mid;
+            }
+        }
+        return std::exp(lo);
+    };
+    struct Point {
+        double lfd, beta, lfn, band;
+    };
+    std::vector<Point> grid;
+    constexpr int kFd = 9, kBeta = 10;
+    const double sfd = std::log(300.0) / (kFd - 1), sb = beta_max / kBeta;
+    for (int j = 0; j < kFd; ++j)
+        for (int k = 1; k <= kBeta; ++k) {
+            Point q{std::log(1e-3) + j * sfd, k * sb, 0.0, 0.0};
+            q.band = band_at(q.lfd, q.beta, &q.lfn);
+            grid.push_back(q);
+        }
+    std::sort(grid.begin(), grid.end(), [](const Point& a, const Point& b) { return a.band > b.band; });
+    std::vector<Point> starts(grid.begin(), grid.begin() + std::min<size_t>(2, grid.size()));
+    if (start) {
+        Point q{std::log(start->fd), start->beta, 0.0, 0.0};
+        q.band = band_at(q.lfd, q.beta, &q.lfn);
+        starts.insert(starts.begin(), q);
+    }
+    // Nelder-Mead (maximising B) in (log f_d, beta) from each start; initial simplex half a grid step.
+    Point bestp = starts.front();
+    for (const Point& s0 : starts) {
+        std::array<Point, 3> v{s0, s0, s0};
+        v[1].lfd += 0.5 * sfd;
+        v[2].beta += (s0.beta + 0.5 * sb <= beta_max ? 0.5 : -0.5) * sb;
+        for (int i = 1; i < 3; ++i) v[i].band = band_at(v[i].lfd, v[i].beta, &v[i].lfn);
+        auto mk = [&](double lfd, double beta) {
+            Point q{lfd, beta, 0.0, 0.0};
+            q.band = band_at(lfd, beta, &q.lfn);
+            return q;
+        };
+        for (int it = 0; it < 30; ++it) {
+            std::sort(v.begin(), v.end(), [](const Point& a, const Point& b) { return a.band > b.band; });
+            if (std::max(std::fabs(v[1].lfd - v[0].lfd) + std::fabs(v[2].lfd - v[0].lfd),
+                         std::fabs(v[1].beta - v[0].beta) + std::fabs(v[2].beta - v[0].beta)) < 1e-4)
+                break;
+            const double cf = 0.5 * (v[0].lfd + v[1].lfd), cb = 0.5 * (v[0].beta + v[1].beta);
+            const Point r = mk(2 * cf - v[2].lfd, 2 * cb - v[2].beta);
+            if (r.band > v[0].band) {
+                const Point e = mk(3 * cf - 2 * v[2].lfd, 3 * cb - 2 * v[2].beta);
+                v[2] = e.band > r.band ? e : r;
+            } else if (r.band > v[1].band) {
+                v[2] = r;
+            } else {
+                const Point c = mk(0.5 * (cf + v[2].lfd), 0.5 * (cb + v[2].beta));
+                if (c.band > v[2].band) {
+                    v[2] = c;
+                } else {
+                    for (int i = 1; i < 3; ++i) v[i] = mk(0.5 * (v[0].lfd + v[i].lfd), 0.5 * (v[0].beta + v[i].beta));
+                }
+            }
+        }
+        for (const Point& q : v)
+            if (q.band > bestp.band) bestp = q;
     }
     best.F = Prefilter{std::exp(bestp.lfn), std::exp(bestp.lfd), bestp.beta};
-    best.band = bestp.v;
+    best.band = flat_band([&](double w) { return closed_loop_tip(L, best.F, p, w, true); }, tol_db);
     return best;
 }
 

@@ -7,6 +7,7 @@
 #include <limits>
 #include <numeric>
 #include <stdexcept>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -70,6 +71,17 @@ MatrixXd modal_basis(const MatrixXd& A)
         }
     }
     if (c != n) throw std::runtime_error("modal_basis: unpaired complex eigenvalue");
+    // The rigid-body mode with damping (r_t > 0): two real eigenvalues 0 and -r (angle and the
+    // damped velocity), whose eigenvectors are nearly parallel (both are mostly "all angles
+    // equal"). Weighting those two coordinates directly puts a huge weight on their difference,
+    // i.e. on the velocity, and almost none on the angle: the LQR then leaves the angle error a
+    // closed-loop pole near -0.03 rad/s (time constant 30 s). Use an orthonormal basis of their
+    // invariant subspace instead (Gram-Schmidt: angle, then velocity), which is what the Jordan
+    // chain below gives in the undamped limit, so the weights are continuous in r_t -> 0.
+    if (n >= 2 && std::fabs(lam(idx[0]).imag()) == 0.0 && std::fabs(lam(idx[1]).imag()) == 0.0) {
+        V.col(1) -= V.col(0) * V.col(0).dot(V.col(1));
+        V.col(1).normalize();
+    }
     Eigen::JacobiSVD<MatrixXd> sv(V);
     if (sv.singularValues()(n - 1) > 1e-10 * sv.singularValues()(0)) return V;
     // Dependent eigenvectors: the rigid-body double zero eigenvalue forms a Jordan block.
@@ -173,12 +185,15 @@ LqgDesign design_lqg(const StateSpace& plant, const LqgParams& p)
     return d;
 }
 
-LoopCheck check_closed_loop(const LqgDesign& d, const StateSpace& plant)
+LoopCheck check_closed_loop(const LqgDesign& d, const StateSpace& plant, int plant_di, int plant_do)
 {
     const LqgParams& p = d.params;
+    LoopCheck r;
+    r.plant_di = plant_di < 0 ? p.di : plant_di;
+    r.plant_do = plant_do < 0 ? p.dout : plant_do;
     const StateSpace disc = c2d_zoh(plant, p.T);
     MatrixXd Ap, Bp, Ep, Cp;
-    delay_augment(disc.A, disc.B, disc.C, p.di, p.dout, Ap, Bp, Ep, Cp);
+    delay_augment(disc.A, disc.B, disc.C, r.plant_di, r.plant_do, Ap, Bp, Ep, Cp);
     const Eigen::Index np = Ap.rows(), ne = d.Ae.rows();
     // Controller: e_hat[k+1] = (A_e - L_e C_e + B_e F) e_hat + L_e e_y,  e_u = F e_hat, F = [-K, 1].
     MatrixXd F(1, ne);
@@ -186,20 +201,41 @@ LoopCheck check_closed_loop(const LqgDesign& d, const StateSpace& plant)
     const MatrixXd Ac = d.Ae - d.Le * d.Ce + d.Be * F;
     MatrixXd Acl(np + ne, np + ne);
     Acl << Ap, Bp * F, d.Le * Cp, Ac;
-    LoopCheck r;
     r.plant_states = static_cast<int>(np);
     Eigen::EigenSolver<MatrixXd> es(Acl, false);
-    for (Eigen::Index i = 0; i < Acl.rows(); ++i) r.spectral_radius = std::max(r.spectral_radius, std::abs(es.eigenvalues()(i)));
+    for (Eigen::Index i = 0; i < Acl.rows(); ++i) {
+        const cplx z = es.eigenvalues()(i);
+        if (std::abs(z) > r.spectral_radius) {
+            r.spectral_radius = std::abs(z);
+            r.critical_w = std::fabs(std::arg(z)) / p.T;
+        }
+    }
+    // Frequencies: a log grid, plus each lightly damped plant pole's aliased frequency and its
+    // neighbourhood in units of the half-power width, so that a resonance of width 1e-6 rad/s is
+    // not stepped over.
+    const double wmax = kPi / p.T;
+    std::vector<double> ws;
+    const int pts = 3000;
+    for (int i = 0; i < pts; ++i) ws.push_back(0.1 * std::pow(wmax / 0.1, i / (pts - 1.0)));
+    Eigen::EigenSolver<MatrixXd> ep(Ap, false);
+    for (Eigen::Index i = 0; i < np; ++i) {
+        const cplx z = ep.eigenvalues()(i);
+        if (std::abs(z) < 0.9 || z.imag() < 0.0) continue;
+        const double w0 = std::arg(z) / p.T, bw = std::max((1.0 - std::abs(z)) / p.T, 1e-9 * wmax);
+        for (double m : {-16.0, -8.0, -4.0, -2.0, -1.0, 0.0, 1.0, 2.0, 4.0, 8.0, 16.0}) {
+            const double w = w0 + m * bw;
+            if (w > 0.1 && w < wmax) ws.push_back(w);
+        }
+    }
+    std::sort(ws.begin(), ws.end());
     // Loop broken at the plant input: L = -C(z) P(z) (the loop is u = C y, y = P u).
     const Eigen::MatrixXcd Apc = Ap.cast<cplx>(), Acc = Ac.cast<cplx>();
     r.gain_margin_db = std::numeric_limits<double>::infinity();
     r.phase_margin_deg = std::numeric_limits<double>::infinity();
     r.modulus_margin = std::numeric_limits<double>::infinity();
     cplx prev(0.0, 0.0);
-    const int pts = 3000;
-    for (int i = 0; i < pts; ++i) {
-        const double w = 0.1 * std::pow((kPi / p.T) / 0.1, i / (pts - 1.0));
-        const cplx z = std::polar(1.0, w * p.T);
+    for (size_t i = 0; i < ws.size(); ++i) {
+        const cplx z = std::polar(1.0, ws[i] * p.T);
         const Eigen::MatrixXcd Pz =
             Cp.cast<cplx>() * (z * Eigen::MatrixXcd::Identity(np, np) - Apc).partialPivLu().solve(Bp.cast<cplx>());
         const Eigen::MatrixXcd Cz =

@@ -80,6 +80,23 @@ CheckRegistrar stable({"wang.lqg.stable", "seed 004 Ch. 7, Exp. D on the unreduc
     return r;
 }});
 
+CheckRegistrar stable_c({"wang.lqg.stable.expc", "seed 004 Sec. 8.5, Table 8.7: Exp. C on the rig's delays", [] {
+    // Exp. C has no delay model but ran on the same rig (T_i = 4 T, T_o = 3 T, Table 8.8), with a
+    // 15 ms tip lag and no reported instability (notes 004b 9.5-9.6): closed on the unreduced arm
+    // with those plant delays, the Table 8.7 design must be stable.
+    const auto d = design::design_lqg(arm_model(true), design::LqgParams::exp_c());
+    const auto c = design::check_closed_loop(d, arm_model(false), design::kRigDi, design::kRigDo);
+    CheckOutcome r;
+    r.expected = {1.0};
+    r.got = {c.spectral_radius < 1.0 ? 1.0 : 0.0};
+    r.tol = 0.0;
+    r.note = "1 = stable: spectral radius " + std::to_string(c.spectral_radius) + " with " +
+             std::to_string(c.plant_states) + " plant states (40 + 4 + 3), controller without delay model; GM " +
+             std::to_string(c.gain_margin_db) + " dB, PM " + std::to_string(c.phase_margin_deg) + " deg, min|1+L| " +
+             std::to_string(c.modulus_margin) + "; r_t = 0.5 (project choice)";
+    return r;
+}});
+
 CheckRegistrar ibffc({"wang.ibffc.exact", "seed 004 Sec. 4.3, App. E/F: stable inversion, Table 8.5 trajectory", [] {
     const auto p = table85();
     const auto r = design::stable_inversion(arm_model(true), 1.2e-3, [&](double t) { return p.eval(t)[1]; }, -2.0, 4.5);

@@ -43,6 +43,11 @@ StateSpace arm_measured_model(const PhSystem& arm);
 // Modal coordinates sigma = V^-1 x; Q_c = V^-T Q_tilde V^-1 (8.5).
 Eigen::MatrixXd modal_basis(const Eigen::MatrixXd& A);
 
+// The delays of the thesis's rig (Sec. 7.1, Table 8.8): torque path PLC -> ACOPOS T_i = 4 T = 4.8 ms,
+// IMU -> PLC T_o = 3 T = 3.6 ms. They are a property of the plant, whatever delay model the
+// controller has: Exp. C (no delay model) ran on the same rig.
+constexpr int kRigDi = 4, kRigDo = 3;
+
 struct LqgParams {
     double T = 1.2e-3;  // sample time [s] (Table 8.8)
     int di = 4, dout = 3;  // input and IMU output delays [samples]
@@ -77,16 +82,23 @@ void delay_augment(const Eigen::MatrixXd& Ad, const Eigen::MatrixXd& Bd, const E
 
 struct LoopCheck {
     double spectral_radius = 0.0;  // closed loop (plant + delays + observer-based controller)
+    double critical_w = 0.0;       // |arg z| / T of the eigenvalue of largest modulus [rad/s] (aliased)
     double gain_margin_db = 0.0;   // at the plant input: smallest |20 log10 |L|| over the -180 deg
                                    // crossings (+inf if the phase never crosses -180)
     double phase_margin_deg = 0.0; // smallest over the crossovers
     double modulus_margin = 0.0;   // min |1 + L(e^{j w T})|
     int plant_states = 0;
+    int plant_di = 0, plant_do = 0;  // delays of the plant the loop was closed around
 };
 
 // Closes the loop of `d` around `plant` (continuous measured model, possibly the unreduced
-// arm), discretised with ZOH at T and delay-augmented with d_i, d_o.
-LoopCheck check_closed_loop(const LqgDesign& d, const StateSpace& plant);
+// arm), discretised with ZOH at T and delay-augmented with the plant's delays plant_di, plant_do
+// (< 0: the design's d_i, d_o). The controller keeps its own delay model: Exp. C (no delay
+// model) checked on the rig's delays is plant_di = 4, plant_do = 3 with d.params.di = do = 0.
+// Margins: the loop L = -C(z) P(z) on a log grid over (0.1, pi/T) rad/s plus, for every plant
+// pole with |z| > 0.9, points at its (aliased) frequency |arg z|/T and +-(1, 2, 4, 8, 16) times
+// its half-power width (1 - |z|)/T, so lightly damped beam modes (zeta ~ 1e-6) are resolved.
+LoopCheck check_closed_loop(const LqgDesign& d, const StateSpace& plant, int plant_di = -1, int plant_do = -1);
 
 nlohmann::json to_json(const LqgDesign& d);
 
