@@ -90,7 +90,7 @@ CheckRegistrar stable_c({"wang.lqg.stable.expc", "seed 004 Sec. 8.5, Table 8.7: 
     r.expected = {1.0};
     r.got = {c.spectral_radius < 1.0 ? 1.0 : 0.0};
     r.tol = 0.0;
-    r.note = "1 = stable: spectral radius " + std::to_string(c.spectral_radius) + " with " +
+    r.note = "1 = stable: 1 - spectral radius = " + sci(1.0 - c.spectral_radius) + " (the plant's own shear modes) with " +
              std::to_string(c.plant_states) + " plant states (40 + 4 + 3), controller without delay model; GM " +
              std::to_string(c.gain_margin_db) + " dB, PM " + std::to_string(c.phase_margin_deg) + " deg, min|1+L| " +
              std::to_string(c.modulus_margin) + "; r_t = 0.5 (project choice)";
