@@ -167,13 +167,19 @@ TEST_P(ArmctrlTable, ArmCtrlReaderFillsItsParametersFromTheTable)
     for (long j = 0; j < nb; ++j) ASSERT_TRUE(same_bits(p.Lqg.pK[j], d.K(0, j)));
     for (long i = 0; i <= nb; ++i)
         for (long r = 0; r < 3; ++r) ASSERT_TRUE(same_bits(p.Lqg.pL[i * 3 + r], d.L(i, r)));
-    // The same gains as `fracdesign lqg` designs (the design code is shared; check it is the same design).
-    design::LqgParams lp = exp == 'C' ? design::LqgParams::exp_c() : design::LqgParams::exp_d();
-    const auto ref = design::design_lqg(design::wang_arm_measured(9, 0.5, 0.0, true), lp);
-    ASSERT_EQ(ref.K.cols(), nb);
-    for (long j = 0; j < nb; ++j) EXPECT_TRUE(same_bits(ref.K(0, j), d.K(0, j))) << j;
+    // The same gains as `fracdesign lqg --exp C|D` writes (its design document, JSON doubles
+    // round-trip exactly).
+    const std::string doc = tmpdir() + "/lqg_" + exp + ".json";
+    int st = -1;
+    const std::string log = run(std::string(FRACDESIGN_EXE) + " lqg --exp " + exp + " --out " + doc, &st);
+    ASSERT_EQ(st, 0) << log;
+    std::ifstream jf(doc);
+    const auto ref = nlohmann::json::parse(jf);
+    ASSERT_EQ(ref["K"][0].size(), static_cast<size_t>(nb));
+    ASSERT_EQ(ref["Le"].size(), static_cast<size_t>(nb + 1));
+    for (long j = 0; j < nb; ++j) EXPECT_TRUE(same_bits(ref["K"][0][j].get<double>(), d.K(0, j))) << j;
     for (long i = 0; i <= nb; ++i)
-        for (long r = 0; r < 3; ++r) EXPECT_TRUE(same_bits(ref.Le(i, r), d.L(i, r)));
+        for (long r = 0; r < 3; ++r) EXPECT_TRUE(same_bits(ref["Le"][i][r].get<double>(), d.L(i, r))) << i << "," << r;
 }
 
 // frac_lqg_step with the table's A', B', C', K, L computes what the design's dense predictor
@@ -304,7 +310,7 @@ TEST(ArmctrlCli, BadRequestsAreRefusedNamingTheOption)
         {"--exp D --di -1", "--di"},
         {"--exp D --do -2", "--do"},
         {"--exp C --di 4", "Exp. C has no delay model"},
-        {"--exp B --N 2", "--N"},
+        {"--exp B --N 4", "--N"},
         {"--exp B --N 100", "--N"},
         {"--exp A --format xml", "--format"},
         {"--exp A --real float16", "--real"},

@@ -171,7 +171,7 @@ CommandRegistrar reg({"armctrl", "parameter table of the PLC program ArmCtrl for
                       "t_e + POST, default 2.5 s) starts at rest and holds the ibFFC pre-actuation before\n"
                       "0.5 s. LQG matrices: A', B', C' (ZOH plant), K, L_e exactly as `fracdesign lqg`\n"
                       "designs them, in libfrac's frac_lqg convention. --N: beam collocation points\n"
-                      "(4..24, default 9, Table 8.4); --rt/--rr: beam damping (thesis gives none;\n"
+                      "(5..24, default 9, Table 8.4); --rt/--rr: beam damping (thesis gives none;\n"
                       "default 0.5, 0). --di/--do only for Exp. D. Formats as `fracdesign table emit`\n"
                       "(default bin: the FRPT data object). Exit status 2 on a bad option, 1 when\n"
                       "the design fails (cause named).\n",

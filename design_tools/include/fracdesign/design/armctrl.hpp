@@ -43,7 +43,8 @@ struct ArmctrlSpec {
     void validate() const;
 };
 
-constexpr int kArmctrlNMin = 4, kArmctrlNMax = 24;
+// N = 4 gives a 16-state beam, which the 3-shift Krylov reduction to 12 states (Table 8.4) cannot span.
+constexpr int kArmctrlNMin = 5, kArmctrlNMax = 24;
 // |tau_M*| / max|tau_M*| accepted as "at rest" where the playback starts (cycle 0 and the leads): the
 // backward-in-time part of the stable inversion decays like exp(25.9 (t - t_s)) (the real zero pair
 // +-25.9 rad/s of the inverse dynamics, notes 004b 4.2), about 1e-6 of the peak at t_s - 0.5 s.
