@@ -94,3 +94,65 @@ TEST(GapWhere, windows_are_labelled_with_standstill_reversal_acceleration_and_to
     EXPECT_EQ(window_at(r, 10.5)->condition, "steady motion");
     EXPECT_EQ(window_at(r, 20.5), nullptr);  // no burst, no flag
 }
+
+namespace {
+
+// Mass-spring-damper x'' = u - 2 zeta w x' - w^2 x (outputs x and v), open
+// loop, at Ts = 0.01 s.
+nlohmann::json msd_doc(double f_hz, double zeta)
+{
+    const double w = 2 * M_PI * f_hz;
+    return {{"schema", "frac.model"},
+            {"version", 1},
+            {"kind", "statespace"},
+            {"name", "msd"},
+            {"time", "continuous"},
+            {"A", {{0.0, 1.0}, {-w * w, -2 * zeta * w}}},
+            {"B", {{0.0}, {1.0}}},
+            {"C", {{1.0, 0.0}, {0.0, 1.0}}},
+            {"D", {{0.0}, {0.0}}},
+            {"inputs", {"u"}},
+            {"outputs", {"x", "v"}},
+            {"gap", {{"velocity", "v"}, {"force_input", "u"}}}};
+}
+
+// The nominal (2 Hz, zeta 0.05) checked against a record of the "true" plant,
+// driven by a broadband input (a sum of 200 sines, 0.05-20 Hz).
+ModeCheck check_against(double f_true, double zeta_true)
+{
+    const NominalModel nominal = nominal_from_json(msd_doc(2.0, 0.05), kTs), truth = nominal_from_json(msd_doc(f_true, zeta_true), kTs);
+    Signals s;
+    s.source = "synthetic";
+    s.names = {"u", "x", "v"};
+    s.Ts = kTs;
+    s.values = Eigen::MatrixXd::Zero(kN, 3);
+    for (Eigen::Index k = 0; k < kN; ++k)
+        for (int i = 1; i <= 200; ++i) s.values(k, 0) += std::sin(2 * M_PI * 0.1 * i * double(k) * kTs + 0.37 * i * i);
+    const ReplayTrace tr = replay(make_replay_setup(truth, s, {}, {"x", "v"}), {});
+    s.values.rightCols(2) = tr.y;
+    GapOptions opt;
+    opt.effects = {Effect::gain_error};
+    const GapResult r = diagnose(nominal, s, nullptr, opt);
+    EXPECT_EQ(r.modes.size(), 1u);
+    return r.modes.empty() ? ModeCheck{} : r.modes[0];
+}
+
+}  // namespace
+
+TEST(GapWhere, a_mode_at_1_5x_its_modelled_frequency_is_flagged_shifted_at_the_measured_frequency)
+{
+    const ModeCheck m = check_against(3.0, 0.05);
+    EXPECT_EQ(m.flag, "shifted");
+    EXPECT_NEAR(m.measured_peak_hz, 3.0, 0.15);
+    EXPECT_NEAR(m.f_hz, 2.0, 1e-6);
+}
+
+TEST(GapWhere, a_mode_with_a_quarter_of_its_damping_is_flagged_mis_damped)
+{
+    EXPECT_EQ(check_against(2.0, 0.0125).flag, "mis-damped");
+}
+
+TEST(GapWhere, the_modelled_mode_is_ok)
+{
+    EXPECT_EQ(check_against(2.0, 0.05).flag, "ok");
+}
