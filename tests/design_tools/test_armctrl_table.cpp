@@ -315,6 +315,7 @@ TEST(ArmctrlCli, BadRequestsAreRefusedNamingTheOption)
         {"--exp A --format xml", "--format"},
         {"--exp A --real float16", "--real"},
         {"--exp D --di 60", "--di"},
+        {"--exp D --di 40 --do 8", "FRAC_MAT_MAX"},
     };
     for (const auto& c : cases) {
         int st = -1;
@@ -331,6 +332,21 @@ TEST(ArmctrlCli, BadRequestsAreRefusedNamingTheOption)
             design::design_armctrl(s);
         }(),
         std::invalid_argument);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(ArmctrlDesign, FeedforwardCapacityIsArmCtrlsFfMax)
+{
+    // The table fills ArmCtrl's storage exactly up to ARMCTRL_FF_MAX samples and refuses one more.
+    design::ArmctrlSpec s;
+    s.exp = 'A';
+    s.post = (ARMCTRL_FF_MAX - 1) * s.T - 2.0 - 1e-7;
+    EXPECT_EQ(design::design_armctrl(s).ff[0].size(), static_cast<size_t>(ARMCTRL_FF_MAX));
+    s.post = ARMCTRL_FF_MAX * s.T - 2.0 - 1e-7;
+    EXPECT_THROW(design::design_armctrl(s), std::invalid_argument);
 }
 
 }  // namespace
