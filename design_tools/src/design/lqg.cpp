@@ -267,7 +267,8 @@ nlohmann::json to_json(const LqgDesign& d)
              {{"n_low", p.n_low}, {"q_low", p.q_low}, {"q_high", p.q_high}, {"q_delay", p.q_delay}, {"S_c", p.s_c},
               {"Qo", {p.qo_drive, p.qo_beam, p.qo_delay, p.qo_dist}}, {"S_o", p.s_o}}},
             {"modal_convention", "real modal form, modes by |lambda| ascending, unit 2-norm eigenvectors, "
-                                 "Jordan chain for a defective rigid-body mode; first n_low coordinates weighted q_low"},
+                                 "rigid-body pair orthonormalised (Jordan chain when defective); first n_low coordinates "
+                                 "weighted q_low"},
             {"K", mat(d.K)},
             {"Le", mat(d.Le)},
             {"Ae", mat(d.Ae)},

@@ -36,7 +36,11 @@ StateSpace arm_measured_model(const PhSystem& arm);
 //  - modes ordered by |lambda| ascending (the rigid-body mode first, then flexible modes by
 //    frequency); a complex pair sigma +- j omega with eigenvector a +- j b (unit 2-norm, as
 //    MATLAB eig) contributes the columns [a, b] (real modal form);
-//  - a real eigenvalue contributes its unit eigenvector;
+//  - a real eigenvalue contributes its unit eigenvector; when the two smallest modes are both
+//    real (the rigid-body mode damped by r_t > 0: 0 and -0.047 rad/s, nearly parallel
+//    eigenvectors), the second column is made orthogonal to the first and normalised, so the
+//    pair is an orthonormal basis of its invariant subspace (angle, velocity), as the Jordan
+//    chain below for r_t = 0 (weights continuous in r_t; see docs/armctrl_tables.md);
 //  - when the eigenvectors are (numerically) dependent — the undamped rigid-body double
 //    zero eigenvalue — the two smallest modes are replaced by the Jordan chain v1 = null(A),
 //    A v2 = v1 (least squares), each normalised to unit 2-norm.
