@@ -544,7 +544,25 @@ nlohmann::json run_bench(const BenchOptions& opt, std::ostream* progress)
                           std::isfinite(one.per_case[0].param_error)
                               ? (std::to_string(int(std::lround(100 * one.per_case[0].param_error))) + " %").c_str()
                               : "-");
-            *progress << b << std::flush;
+            *progress << b;
+            // True and recovered values of the mapped parameters.
+            std::string line;
+            for (const TruthEffect& t : c.truth) {
+                const std::map<std::string, double>* rec = nullptr;
+                for (size_t i = 0; i < r.outcome.verdict.size(); ++i)
+                    if (r.outcome.verdict[i] == t.effect) rec = &r.outcome.verdict_params[i];
+                for (const TruthParam& p : t.params) {
+                    char v[160];
+                    const auto it = rec ? rec->find(p.name) : std::map<std::string, double>::const_iterator();
+                    if (rec && it != rec->end())
+                        std::snprintf(v, sizeof v, "  %s %.4g / %.4g", p.name.c_str(), p.value, it->second);
+                    else
+                        std::snprintf(v, sizeof v, "  %s %.4g / -", p.name.c_str(), p.value);
+                    line += v;
+                }
+            }
+            if (!line.empty()) *progress << "            params true / recovered:" << line << "\n";
+            *progress << std::flush;
         }
     }
     const BenchScore S = score_bench(outcomes);

@@ -564,9 +564,9 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
         // scale of the measured values as integer multiples of it (a step
         // that the logger rounds again, e.g. to a wire resolution, is then
         // not off by that rounding).
-        // Passes over |y| <= 20 q, <= 400 q, then all: the multiples n stay
-        // exact while the step is still off by a few percent.
-        for (const double reach : {20.0, 400.0, std::numeric_limits<double>::infinity()}) {
+        // Passes over |y| <= 5 q, <= 50 q, <= 500 q, then all: the multiples
+        // n stay exact while the step is still off by up to 10 %.
+        for (const double reach : {5.0, 50.0, 500.0, std::numeric_limits<double>::infinity()}) {
             if (!std::isfinite(q)) break;
             double num = 0, den = 0;
             for (Eigen::Index k = 0; k < R.fit_samples; ++k) {
