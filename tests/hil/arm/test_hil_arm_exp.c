@@ -26,6 +26,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "frac_test.h"
+#include "frac_test_file.h"
 #include "hil/canopen.h"
 #include "hil/rig.h"
 #include "plc_law.h"
@@ -40,24 +41,6 @@ static unsigned n_sig;
 struct exp_result {
     double umin, umax, final_tip, lag;
 };
-
-static unsigned char *slurp(const char *path, unsigned long *size)
-{
-    FILE *f = fopen(path, "rb");
-    unsigned char *b;
-    long n;
-    assert_non_null(f);
-    assert_int_equal(fseek(f, 0, SEEK_END), 0);
-    n = ftell(f);
-    assert_true(n > 0);
-    rewind(f);
-    b = malloc((size_t)n);
-    assert_non_null(b);
-    assert_int_equal(fread(b, 1, (size_t)n, f), (size_t)n);
-    fclose(f);
-    *size = (unsigned long)n;
-    return b;
-}
 
 /* The scenario file with its tables taken from the build's table directory. */
 static void load_scenario(struct hil_rig_config *c, char which)
@@ -148,7 +131,7 @@ static void exp_run(char which, struct exp_result *r)
     unsigned long size;
     unsigned char *b;
     load_scenario(&c, which);
-    b = slurp(c.ctrl_table, &size);
+    b = frac_test_slurp(c.ctrl_table, &size);
     assert_int_equal(run(&c, b, size), HIL_OK);
     free(b);
     analyse(r);
@@ -199,7 +182,7 @@ static void test_bad_table_never_enables_torque_and_reports_status(void **state)
     (void)state;
     load_scenario(&c, 'd');
     c.duration = 0.1;
-    b = slurp(c.ctrl_table, &size);
+    b = frac_test_slurp(c.ctrl_table, &size);
     b[size / 2] ^= 0x40; /* CRC no longer matches */
     assert_int_equal(run(&c, b, size), HIL_E_STATE);
     free(b);
@@ -263,7 +246,7 @@ static void test_stiction_residual_oscillation_is_measured(void **state)
         c.plant_p.friction.v_s = 0.05;
         c.plant_p.friction.delta = 2.0;
         c.duration = 6.0;
-        b = slurp(c.ctrl_table, &size);
+        b = frac_test_slurp(c.ctrl_table, &size);
         assert_int_equal(run(&c, b, size), HIL_OK);
         free(b);
         residual(2.2, 3.2, &a1, &f1);

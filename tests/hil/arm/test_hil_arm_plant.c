@@ -11,30 +11,13 @@
 #include <stdlib.h>
 #include <string.h>
 #include "frac_test.h"
+#include "frac_test_file.h"
 #include "../../plc_blocks/ptable_writer.h"
 #include "hil/canopen.h"
 #include "hil/rig.h"
 
 static struct hil_plant pl;
 static struct hil_rig rig;
-
-static unsigned char *slurp(const char *path, unsigned long *size)
-{
-    FILE *f = fopen(path, "rb");
-    unsigned char *b;
-    long n;
-    assert_non_null(f);
-    assert_int_equal(fseek(f, 0, SEEK_END), 0);
-    n = ftell(f);
-    assert_true(n > 0);
-    rewind(f);
-    b = malloc((size_t)n);
-    assert_non_null(b);
-    assert_int_equal(fread(b, 1, (size_t)n, f), (size_t)n);
-    fclose(f);
-    *size = (unsigned long)n;
-    return b;
-}
 
 static void spit(const char *path, const unsigned char *b, unsigned long n)
 {
@@ -96,7 +79,7 @@ static void expect_refused(const char *path, const char *field)
 static void test_bad_tables_are_refused_with_the_field_named(void **state)
 {
     unsigned long n, ad_off = 0, i;
-    unsigned char *b = slurp(HIL_ARM_TABLE, &n), *c = malloc(n);
+    unsigned char *b = frac_test_slurp(HIL_ARM_TABLE, &n), *c = malloc(n);
     char path[512];
     static unsigned char w[4096];
     const double small[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, dims[2] = {40, 9}, dims_bad[2] = {41, 9}, h = 1.5e-4,
