@@ -168,6 +168,36 @@ TEST(GapBenchRun, scores_a_small_bench_and_a_replayed_case_gives_the_same_result
     EXPECT_EQ(a["shrink"], b["shrink"]);
 }
 
+TEST(GapBenchRun, the_case_files_repeat_the_diagnosis)
+{
+    namespace fs = std::filesystem;
+    BenchOptions opt;
+    opt.cases = 1;
+    opt.seed = 5;
+    opt.duration = 1.2;
+    opt.out_dir = (fs::temp_directory_path() / ("gap_bench_out_" + std::to_string(::getpid()))).string();
+    const nlohmann::json j = run_bench(opt, nullptr);
+    const fs::path d = fs::path(opt.out_dir) / "case_000";
+    for (const char* f : {"scenario.txt", "signals.csv", "nominal.json", "truth.json", "result.json"})
+        EXPECT_TRUE(fs::exists(d / f)) << f;
+    // The files alone give the same verdict (what `fracdesign gap` runs on them).
+    const Signals data = load_signals((d / "signals.csv").string());
+    const NominalModel m = load_nominal_model((d / "nominal.json").string(), data.Ts);
+    GapOptions g;
+    g.outputs = {"motor_velocity", "imu_rate"};
+    const GapResult r = diagnose(m, data, nullptr, g);
+    std::vector<std::string> names;
+    for (const EffectInstance& e : r.verdict.effects) names.push_back(effect_name(e.kind));
+    std::vector<std::string> want;
+    for (const auto& v : j["cases"][0]["verdict"]) want.push_back(v["effect"].get<std::string>());
+    EXPECT_EQ(names, want);
+    EXPECT_NEAR(r.verdict.shrink, j["cases"][0]["shrink"].get<double>(), 1e-6);
+    std::ifstream truth(d / "truth.json");
+    const nlohmann::json t = nlohmann::json::parse(truth);
+    EXPECT_EQ(t, j["cases"][0]["truth"]);
+    fs::remove_all(opt.out_dir);
+}
+
 TEST(GapBenchRun, refuses_bad_options)
 {
     BenchOptions opt;
