@@ -21,6 +21,7 @@
  * delayed plant. A, B and C have no delay model in the controller, D has
  * (7.18)-(7.27) and the feedforward shifts. */
 #include "frac_test.h"
+#include "frac_test_file.h"
 #include "ArmCtrl.h"
 #include "ImuRead.h"
 #include "plc_rt.h"
@@ -49,22 +50,12 @@ typedef struct arm_plant {
     double x[NX_MAX], y[4];
 } arm_plant;
 
-static unsigned char file_buf[1 << 20];
-
-static unsigned long read_fixture(const char *name)
+/* A fixture made by fracdesign at build time, read whole (caller frees). */
+static unsigned char *read_fixture(const char *name, unsigned long *size)
 {
     char path[512];
-    FILE *f;
-    unsigned long n;
     snprintf(path, sizeof path, "%s/%s", FLEXARM_FIXTURE_DIR, name);
-    f = fopen(path, "rb");
-    if (!f) {
-        fail_msg("cannot open %s (made by fracdesign at build time)", path);
-    }
-    n = (unsigned long)fread(file_buf, 1, sizeof file_buf, f);
-    assert_true(feof(f));
-    fclose(f);
-    return n;
+    return frac_test_slurp(path, size);
 }
 
 static void plant_outputs(arm_plant *p)
@@ -84,9 +75,10 @@ static void load_plant(arm_plant *p)
     frac_ptable t;
     frac_real dims[2], h, *buf;
     static frac_real tmp[NX_MAX * NX_MAX];
-    unsigned long size = read_fixture("arm_plant.bin"), i;
+    unsigned long size, i;
+    unsigned char *data = read_fixture("arm_plant.bin", &size);
     unsigned n;
-    assert_int_equal(frac_ptable_open(&t, file_buf, size), FRAC_OK);
+    assert_int_equal(frac_ptable_open(&t, data, size), FRAC_OK);
     assert_int_equal(frac_ptable_get(&t, "plant_dims", 1, 2, dims), FRAC_OK);
     assert_int_equal(frac_ptable_get(&t, "h", 1, 1, &h), FRAC_OK);
     n = (unsigned)dims[0];
@@ -110,6 +102,7 @@ static void load_plant(arm_plant *p)
     for (i = 0; i < 4ul * n; i++) {
         p->C[i] = (double)buf[i];
     }
+    free(data);
 }
 
 /* One tick: x <- Ad x + Bd (tau - friction(dtheta_M)), (5.2) held over the tick. */
@@ -193,8 +186,6 @@ static void flex_tick(void *ctx, uint64_t t_ns)
     }
 }
 
-static unsigned char table_buf[1 << 20];
-
 /* Runs ArmCtrl on the table of experiment `exp` for 4 s of table time
  * (the motion of Table 8.5 from 0.5 s to 2 s). */
 static void run_flexarm(flexbench *b, char exp, int delayed)
@@ -209,6 +200,7 @@ static void run_flexarm(flexbench *b, char exp, int delayed)
     frac_traj_params tp;
     char err[256], name[32], table_2_3[400];
     unsigned long size;
+    unsigned char *table;
     int lqg = exp == 'C' || exp == 'D';
     memset(b, 0, sizeof *b);
     load_plant(&b->pl);
@@ -226,9 +218,8 @@ static void run_flexarm(flexbench *b, char exp, int delayed)
         b->imu_delay = 30;    /* + the 0.6 ms Cyclic #2 path = d_o T = 3.6 ms */
     }
     snprintf(name, sizeof name, "armctrl_%c.bin", exp);
-    size = read_fixture(name);
-    memcpy(table_buf, file_buf, size);
-    armctrl_program_table(&a, &pa, table_buf, (UDINT)size, &storage, &b->drive_img, &b->imu_img, &b->ctrl_img);
+    table = read_fixture(name, &size);
+    armctrl_program_table(&a, &pa, table, (UDINT)size, &storage, &b->drive_img, &b->imu_img, &b->ctrl_img);
     imuread_program(&m, &pm, 1.0f, &b->can_img, &b->imu_img);
     reg[0] = &pa;
     reg[1] = &pm;
@@ -255,6 +246,7 @@ static void run_flexarm(flexbench *b, char exp, int delayed)
     assert_int_equal(storage.par.Ff.Lead[ARMCTRL_FF_DPSI], exp == 'D' ? -3 : 0);
     assert_int_equal(storage.par.Ff.Lead[ARMCTRL_FF_THETA] + storage.par.Ff.Lead[ARMCTRL_FF_DTHETA], 0);
     plc_rt_stop(&rt);
+    free(table);
     print_message("Exp. %c (%s plant): max |psi_L - q| = %.3g rad, final psi_L = %.6f rad (pi/2 %+.2e), "
                   "max |psi_L - pi/2| after 3 s = %.3g rad, max |tau| = %.1f Nm, StatusID %u\n",
                   exp, delayed ? "delayed" : "undelayed", b->max_track_err, b->pl.y[2], b->pl.y[2] - FRAC_PI / 2,
