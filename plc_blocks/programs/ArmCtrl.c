@@ -64,11 +64,13 @@ static void run_blocks(armctrl *a)
     }
     /* fault reaction: stale sensors (or a non-finite torque) ramp the torque to zero */
     a->wd_drive.SampleCounter = a->in.DriveCounter;
+    a->wd_drive.Acknowledge = a->in.Acknowledge;
     a->wd_drive.TorqueIn = tau;
     Watchdog(&a->wd_drive);
     tau = a->wd_drive.TorqueOut;
     if (uses_lqg(p)) {
         a->wd_imu.SampleCounter = a->in.ImuCounter;
+        a->wd_imu.Acknowledge = a->in.Acknowledge;
         a->wd_imu.TorqueIn = tau;
         Watchdog(&a->wd_imu);
         tau = a->wd_imu.TorqueOut;
@@ -97,9 +99,27 @@ static int cols_of(const frac_ptable *t, const char *name, unsigned rows, unsign
     return FRAC_OK;
 }
 
+/* Watchdog entry `name`, 1 x 2: max stale cycles (1..1e6), ramp rate [Nm/s]
+ * (the ramp rate is validated by the Watchdog block at _INIT). */
+static int read_watchdog(const frac_ptable *t, const char *name, WatchdogParType *wd)
+{
+    frac_real v[2];
+    int st = get(t, name, 1, 2, v);
+    if (st != FRAC_OK) {
+        return st;
+    }
+    if (!(v[0] >= 1 && v[0] <= 1e6)) {
+        return FRAC_E_PARAM;
+    }
+    wd->MaxStaleCycles = (UDINT)v[0];
+    wd->RampRate = (REAL)v[1];
+    return FRAC_OK;
+}
+
 int armctrl_params_from_table(armctrl_table_storage *s, const frac_ptable *t)
 {
     armctrl_params *p;
+    frac_ptable_entry e;
     frac_real v[5];
     unsigned n_ff, c, n, nb;
     int st;
@@ -156,16 +176,15 @@ int armctrl_params_from_table(armctrl_table_storage *s, const frac_ptable *t)
         return st;
     }
     p->TorqueLimit = (REAL)v[0];
-    if ((st = get(t, "watchdog", 1, 2, v)) != FRAC_OK) {
+    if ((st = read_watchdog(t, "watchdog", &p->WdDrive)) != FRAC_OK) {
         return st;
     }
-    if (!(v[0] >= 1 && v[0] <= 1e6)) {
-        return FRAC_E_PARAM;
-    }
-    p->WdDrive.MaxStaleCycles = (UDINT)v[0];
-    p->WdDrive.RampRate = (REAL)v[1];
     p->WdDrive.CycleTime = p->CycleTime;
     p->WdImu = p->WdDrive;
+    if (frac_ptable_find(t, "watchdog_imu", &e) != FRAC_E_NOT_FOUND
+        && (st = read_watchdog(t, "watchdog_imu", &p->WdImu)) != FRAC_OK) {
+        return st;
+    }
     if (!uses_lqg(p)) {
         if ((st = get(t, "pd", 1, 2, v)) != FRAC_OK) {
             return st;

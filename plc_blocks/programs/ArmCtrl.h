@@ -60,6 +60,8 @@ typedef struct armctrl_inputs {
     REAL TipRate;       /* dpsi_L [rad/s], from ImuRead */
     UDINT ImuCounter;   /* incremented by ImuRead for every new IMU sample */
     BOOL Start;         /* rising edge: start the motion (the counter runs) */
+    BOOL Acknowledge;   /* rising edge: clear a latched watchdog fault once its sensor is fresh
+                           again (operator reset; no automatic restart, PLCopen) */
 } armctrl_inputs;
 
 /* Outputs of the I/O image. */
@@ -92,7 +94,8 @@ typedef struct armctrl_params {
  *   "ff_grid"      1 x 4  table time of sample 0, sample time, nominal motion start and end [s]
  *   "ff_lead"      1 x 4  lead (+) / lag (-) per row [cycles] (Exp. D: 0, 0, -3, 4)
  *   "torque_limit" 1 x 1  [Nm]
- *   "watchdog"     1 x 2  max stale cycles, ramp rate [Nm/s]
+ *   "watchdog"     1 x 2  max stale cycles, ramp rate [Nm/s] (drive; also the IMU's
+ *                         unless "watchdog_imu" is given)
  * Exp. A/B:
  *   "pd"           1 x 2  K_P [Nm/rad], K_D [Nm s/rad] (Table 8.6)
  *   "friction"     1 x 3  b_1 [Nm s/rad], b_0 [Nm], k (linear model (5.2), Table 8.6)
@@ -100,6 +103,9 @@ typedef struct armctrl_params {
  *   "lqg_dims"     1 x 5  n, d_i, d_o of theta_M, dtheta_M, dpsi_L
  *   "A" n x n, "B" n x 1, "C" 3 x n, "K" 1 x n_bar, "L" (n_bar + 1) x 3
  *                         (n_bar = n + d_i + sum d_o, frac/lqg.h)
+ *   "watchdog_imu" 1 x 2  optional: the IMU watchdog's max stale cycles and ramp rate
+ *                         (the IMU delivers one reading per 2.4 ms = 2 cycles, so its
+ *                         limit may need to differ from the drive's)
  */
 #define ARMCTRL_FF_MAX 4096
 #define ARMCTRL_LQG_NMAX 32

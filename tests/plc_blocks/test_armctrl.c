@@ -329,6 +329,10 @@ static void test_exp_d_lqg_with_delays_tracks_table_8_5_in_lockstep(void **state
 static unsigned char table_buf[ARMCTRL_FF_N * N_FF * 8 + 16384];
 static double ff_d[ARMCTRL_FF_N * N_FF], mat_d[5][(23 + 1) * 23];
 
+/* The optional "watchdog_imu" entry arm_table writes when wd_imu_cols > 0. */
+static unsigned wd_imu_cols;
+static double wd_imu[3];
+
 /* Writes ArmCtrl's table for Exp. A (lqg = 0) or the fixture LQG designs
  * (1 = Exp. C, 2 = Exp. D); `drop` omits the entry of that name, `pd_cols`
  * sets the columns of "pd" (2 is right). Returns the size. */
@@ -368,6 +372,9 @@ static unsigned long arm_table(int lqg, const char *drop, unsigned pd_cols)
     ENTRY("ff_lead", 1, 4, lqg == 2 ? lead_d : lead_a);
     ENTRY("torque_limit", 1, 1, &limit);
     ENTRY("watchdog", 1, 2, wd);
+    if (wd_imu_cols) {
+        ENTRY("watchdog_imu", 1, wd_imu_cols, wd_imu);
+    }
     if (lqg == 0) {
         ENTRY("pd", 1, pd_cols, pd);
         ENTRY("friction", 1, 3, fric);
@@ -503,10 +510,30 @@ static void test_stale_drive_ramps_torque_to_zero(void **state)
     assert_true(b.ctrl_img.TorqueSetpoint == 0.0f);
 }
 
+/* Exp. D with a one-state model and zero gains: the torque is the shifted
+ * feedforward alone (Sec. 8.6: u*[k + d_i] with d_i = 4; dpsi*[k - d_o]
+ * with d_o = 3). */
+static void exp_d_zero_gain_params(armctrl_params *par)
+{
+    static frac_real A[1] = {1.0}, B[1] = {0.0}, C[3] = {0.0, 0.0, 0.0}, K[8], L[27];
+    exp_a_params(par);
+    par->Variant = ARMCTRL_EXP_D;
+    par->Ff.Lead[ARMCTRL_FF_TAU] = 4;
+    par->Ff.Lead[ARMCTRL_FF_DPSI] = -3;
+    par->Lqg.N = 1;
+    par->Lqg.Di = 4;
+    par->Lqg.P = 3;
+    par->Lqg.Do[2] = 3;
+    par->Lqg.pA = A;
+    par->Lqg.pB = B;
+    par->Lqg.pC = C;
+    par->Lqg.pK = K;
+    par->Lqg.pL = L;
+}
+
 static void test_exp_d_sends_feedforward_torque_d_i_cycles_early(void **state)
 {
     static armctrl a;
-    static frac_real A[1] = {1.0}, B[1] = {0.0}, C[3] = {0.0, 0.0, 0.0}, K[8], L[27];
     armctrl_params par;
     plc_program prog;
     armctrl_inputs img_in;
@@ -514,21 +541,7 @@ static void test_exp_d_sends_feedforward_torque_d_i_cycles_early(void **state)
     UDINT k;
     (void)state;
     build_ff();
-    exp_a_params(&par);
-    par.Variant = ARMCTRL_EXP_D;
-    /* Sec. 8.6: u*[k + d_i] with d_i = 4; dpsi*[k - d_o] with d_o = 3 */
-    par.Ff.Lead[ARMCTRL_FF_TAU] = 4;
-    par.Ff.Lead[ARMCTRL_FF_DPSI] = -3;
-    /* zero gains: the torque is the (shifted) feedforward alone */
-    par.Lqg.N = 1;
-    par.Lqg.Di = 4;
-    par.Lqg.P = 3;
-    par.Lqg.Do[2] = 3;
-    par.Lqg.pA = A;
-    par.Lqg.pB = B;
-    par.Lqg.pC = C;
-    par.Lqg.pK = K;
-    par.Lqg.pL = L;
+    exp_d_zero_gain_params(&par);
     memset(&img_in, 0, sizeof img_in);
     armctrl_program(&a, &prog, &par, &img_in, NULL, &img_out);
     armctrl_init(&a);
@@ -545,6 +558,109 @@ static void test_exp_d_sends_feedforward_torque_d_i_cycles_early(void **state)
     }
     armctrl_exit(&a);
     assert_int_equal(a.lqg.StatusID, fracSTAT_DISABLED);
+}
+
+/* One cycle of the zero-gain Exp. D program at counter k (Start from k = 1). */
+static void ack_cycle(armctrl *a, UDINT k, UDINT drive_count, UDINT imu_count, BOOL ack)
+{
+    a->in.Start = k > 0;
+    a->in.DriveCounter = drive_count;
+    a->in.ImuCounter = imu_count;
+    a->in.Acknowledge = ack;
+    armctrl_cyclic(a);
+}
+
+/* A stale sensor latches the Watchdog fault; fresh data alone does not
+ * restart the torque (no automatic restart), an Acknowledge edge while the
+ * sensor is still stale is refused, and the edge once it is fresh clears
+ * the fault: the torque is the controller's again. Drive, then IMU. */
+static void test_watchdog_fault_clears_on_acknowledge_once_fresh(void **state)
+{
+    static armctrl a;
+    armctrl_params par;
+    plc_program prog;
+    armctrl_inputs img_in;
+    armctrl_outputs img_out;
+    UDINT k = 0, drive = 0, imu = 0;
+    int phase;
+    (void)state;
+    build_ff();
+    exp_d_zero_gain_params(&par);
+    memset(&img_in, 0, sizeof img_in);
+    armctrl_program(&a, &prog, &par, &img_in, NULL, &img_out);
+    armctrl_init(&a);
+    assert_false(a.out.Error);
+    for (phase = 0; phase < 2; phase++) {
+        /* in motion (table time 0.96 s / 1.56 s): the feedforward torque is not 0 */
+        UDINT k0 = phase == 0 ? 800 : 1300;
+        for (; k < k0; k++) {
+            ack_cycle(&a, k, ++drive, ++imu, 0);
+            assert_false(a.out.Error);
+        }
+        assert_true(fabs(a.out.TorqueSetpoint) > 1.0f);
+        /* 10 stale cycles of the drive (phase 0) or the IMU (phase 1); an
+         * Acknowledge edge at the 6th is refused */
+        for (; k < k0 + 10; k++) {
+            ack_cycle(&a, k, phase == 0 ? drive : ++drive, phase == 1 ? imu : ++imu, k == k0 + 5);
+            if (k >= k0 + 3) {
+                assert_true(a.out.Error);
+                assert_int_equal(a.out.StatusID, fracERR_SENSOR_STALE);
+            }
+        }
+        /* fresh again, no Acknowledge: stays latched, the ramp reaches 0 */
+        for (; k < k0 + 300; k++) {
+            ack_cycle(&a, k, ++drive, ++imu, 0);
+            assert_true(a.out.Error);
+        }
+        assert_true(a.out.TorqueSetpoint == 0.0f);
+        /* the edge on fresh data clears it: the shifted feedforward again */
+        ack_cycle(&a, k, ++drive, ++imu, 1);
+        assert_false(a.out.Error);
+        assert_int_equal(a.out.StatusID, fracSTAT_OK);
+        assert_close(a.out.TorqueSetpoint, ff_tab[ARMCTRL_FF_TAU][k - 1 + 4], 1e-3);
+        k++;
+        ack_cycle(&a, k, ++drive, ++imu, 1); /* held TRUE: no further edge, still fine */
+        assert_false(a.out.Error);
+        k++;
+    }
+    armctrl_exit(&a);
+}
+
+/* "watchdog_imu" (optional) gives the IMU watchdog its own limits; without
+ * it the IMU watchdog takes the drive's; a bad one is refused. */
+static void test_table_watchdog_imu_entry(void **state)
+{
+    static armctrl_table_storage s;
+    frac_ptable t;
+    unsigned long size;
+    (void)state;
+    build_ff();
+    wd_imu_cols = 0;
+    size = arm_table(2, NULL, 2);
+    assert_int_equal(frac_ptable_open(&t, table_buf, size), FRAC_OK);
+    assert_int_equal(armctrl_params_from_table(&s, &t), FRAC_OK);
+    assert_int_equal(s.par.WdImu.MaxStaleCycles, 2);
+    assert_true(s.par.WdImu.RampRate == s.par.WdDrive.RampRate);
+    wd_imu_cols = 2;
+    wd_imu[0] = 5.0;
+    wd_imu[1] = 100.0;
+    size = arm_table(2, NULL, 2);
+    assert_int_equal(frac_ptable_open(&t, table_buf, size), FRAC_OK);
+    assert_int_equal(armctrl_params_from_table(&s, &t), FRAC_OK);
+    assert_int_equal(s.par.WdImu.MaxStaleCycles, 5);
+    assert_true(s.par.WdImu.RampRate == 100.0f);
+    assert_true(s.par.WdImu.CycleTime == s.par.CycleTime);
+    assert_int_equal(s.par.WdDrive.MaxStaleCycles, 2);
+    wd_imu[0] = 0.0; /* at least one cycle */
+    size = arm_table(2, NULL, 2);
+    assert_int_equal(frac_ptable_open(&t, table_buf, size), FRAC_OK);
+    assert_int_equal(armctrl_params_from_table(&s, &t), FRAC_E_PARAM);
+    wd_imu[0] = 5.0;
+    wd_imu_cols = 3;
+    size = arm_table(2, NULL, 2);
+    assert_int_equal(frac_ptable_open(&t, table_buf, size), FRAC_OK);
+    assert_int_equal(armctrl_params_from_table(&s, &t), FRAC_E_DIM);
+    wd_imu_cols = 0;
 }
 
 /* Wall-clock mode: ArmCtrl (Exp. D) and ImuRead in real time for 0.24 s,
@@ -601,6 +717,8 @@ int main(void)
         cmocka_unit_test(test_exp_d_runs_in_wall_clock_mode),
         cmocka_unit_test(test_stale_drive_ramps_torque_to_zero),
         cmocka_unit_test(test_exp_d_sends_feedforward_torque_d_i_cycles_early),
+        cmocka_unit_test(test_watchdog_fault_clears_on_acknowledge_once_fresh),
+        cmocka_unit_test(test_table_watchdog_imu_entry),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
