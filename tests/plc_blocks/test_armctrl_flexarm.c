@@ -31,8 +31,8 @@
 #include <stdio.h>
 #include <string.h>
 
-#ifndef FLEXARM_FIXTURE_DIR
-#error "FLEXARM_FIXTURE_DIR is set by tests/plc_blocks/fracdesign_fixtures.cmake"
+#if !defined(FLEXARM_FIXTURE_DIR) || !defined(FLEXARM_TABLE_DIR)
+#error "FLEXARM_FIXTURE_DIR and FLEXARM_TABLE_DIR are set by tests/plc_blocks/fracdesign_fixtures.cmake"
 #endif
 
 #define NX_MAX 64
@@ -50,11 +50,11 @@ typedef struct arm_plant {
     double x[NX_MAX], y[4];
 } arm_plant;
 
-/* A fixture made by fracdesign at build time, read whole (caller frees). */
-static unsigned char *read_fixture(const char *name, unsigned long *size)
+/* A table fracdesign made at build time in `dir`, read whole (caller frees). */
+static unsigned char *read_fixture(const char *dir, const char *name, unsigned long *size)
 {
     char path[512];
-    snprintf(path, sizeof path, "%s/%s", FLEXARM_FIXTURE_DIR, name);
+    snprintf(path, sizeof path, "%s/%s", dir, name);
     return frac_test_slurp(path, size);
 }
 
@@ -76,7 +76,7 @@ static void load_plant(arm_plant *p)
     frac_real dims[2], h, *buf;
     static frac_real tmp[NX_MAX * NX_MAX];
     unsigned long size, i;
-    unsigned char *data = read_fixture("arm_plant.bin", &size);
+    unsigned char *data = read_fixture(FLEXARM_FIXTURE_DIR, "arm_plant.bin", &size);
     unsigned n;
     assert_int_equal(frac_ptable_open(&t, data, size), FRAC_OK);
     assert_int_equal(frac_ptable_get(&t, "plant_dims", 1, 2, dims), FRAC_OK);
@@ -218,7 +218,7 @@ static void run_flexarm(flexbench *b, char exp, int delayed)
         b->imu_delay = 30;    /* + the 0.6 ms Cyclic #2 path = d_o T = 3.6 ms */
     }
     snprintf(name, sizeof name, "armctrl_%c.bin", exp);
-    table = read_fixture(name, &size);
+    table = read_fixture(FLEXARM_TABLE_DIR, name, &size);
     armctrl_program_table(&a, &pa, table, (UDINT)size, &storage, &b->drive_img, &b->imu_img, &b->ctrl_img);
     imuread_program(&m, &pm, 1.0f, &b->can_img, &b->imu_img);
     reg[0] = &pa;
