@@ -151,6 +151,13 @@ int hil_plc_law_step(void *ctx, const struct hil_ctrl_law_in *in, double *torque
     L->drive_img.Start = (L->cycles_run > 0 && in->enabled) || L->drive_img.Start;
     L->can_img.RawRate = (REAL)in->imu_rate;
     L->can_img.FrameCounter = (UDINT)in->imu_readings;
+    if (in->imu_readings != L->imu_seen_at) {
+        L->imu_seen_at = in->imu_readings;
+        L->imu_new_cycle = L->cycles_run;
+    }
+    /* the operator's acknowledge of a run-time fault once the data are fresh */
+    L->drive_img.Acknowledge = !L->a.fault && L->ctrl_img.Error && in->drive_fresh &&
+                               L->cycles_run - L->imu_new_cycle <= 2 && !L->drive_img.Acknowledge;
     plc_rt_run_sim(&L->rt, 12);
     L->cycles_run++;
     *torque = L->ctrl_img.TorqueEnable ? (double)L->ctrl_img.TorqueSetpoint : 0.0;

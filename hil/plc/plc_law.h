@@ -14,6 +14,13 @@
  * reading has arrived (the application starts when its I/O is up; before,
  * the command is 0 Nm): the watchdogs would count the boot of the bus as
  * stale sensors. Start goes TRUE one cycle later (an edge for ArmCtrl).
+ * Recovery: a stale drive or IMU latches ArmCtrl's Watchdog fault (torque
+ * ramps to 0, EMCY); the node plays the operator who acknowledges it once
+ * the data are fresh again: while the program reports Error, the drive
+ * values came this cycle and an IMU reading within the last 2 cycles, it
+ * pulses ArmCtrl's Acknowledge (rising edge every other cycle), and the
+ * Watchdog clears on the first edge that finds both sensors fresh (a fault
+ * of the parameters at _INIT is never acknowledged).
  *
  * Variant Exp. A (Table 8.1): rbFFC feedforward (4.14)-(4.17) of the Table
  * 8.5 point-to-point move (frac/traj.h: 0 -> pi/2, dq_max pi/2, ddq_max 2 pi,
@@ -63,6 +70,8 @@ struct hil_plc_law {
     int started;
     int io_up;                     /* the drive is enabled and an IMU reading came: the tasks run */
     uint64_t cycles_run;           /* controller cycles the task runtime has run */
+    uint64_t imu_seen_at;          /* imu_readings when the last new reading came */
+    uint64_t imu_new_cycle;        /* cycles_run at that reading */
 };
 
 /* Builds Exp. A for cycle T = 1.2 ms on the design model (I_M, I_L, c_s),

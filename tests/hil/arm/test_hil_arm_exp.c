@@ -36,6 +36,7 @@
 static struct hil_rig rig;
 static struct hil_plc_law law;
 static double sig_t[NMAX], sig_ref[NMAX], sig_u[NMAX], sig_tip[NMAX];
+static int sig_fault[NMAX];
 static unsigned n_sig;
 
 struct exp_result {
@@ -78,6 +79,7 @@ static int run(const struct hil_rig_config *c, const unsigned char *bytes, unsig
         sig_ref[k] = rig.ctrl.sig.ref;
         sig_u[k] = rig.ctrl.sig.torque_cmd;
         sig_tip[k] = tip;
+        sig_fault[k] = rig.ctrl.sig.fault;
     }
     n_sig = n;
     hil_plc_law_stop(&law);
@@ -196,6 +198,50 @@ static void test_bad_table_never_enables_torque_and_reports_status(void **state)
     assert_true(rig.drive.tau_act == 0.0);
 }
 
+/* IMU frames stop for 100 ms mid-move (Exp. D, whose LQG needs the tip
+ * rate): ArmCtrl's IMU Watchdog trips within 3 cycles of the first missing
+ * reading (readings come every 2.4 ms; + 1 cycle for ImuRead's task to
+ * publish), EMCY, the torque reaches 0 within 10 ms; once readings are
+ * fresh again the node acknowledges (hil/plc/plc_law.h), EMCY "no error",
+ * and the move still ends at pi/2. */
+static void test_imu_dropout_trips_watchdog_and_recovers_on_fresh_data(void **state)
+{
+    struct hil_rig_config c;
+    unsigned long size, k;
+    unsigned char *b;
+    double t_fault = -1.0, t_zero = -1.0, t_clear = -1.0, T;
+    int episodes = 0;
+    (void)state;
+    load_scenario(&c, 'd');
+    T = c.ctrl.T;
+    c.imu_dropout_start = 1.0;
+    c.imu_dropout_end = 1.1;
+    b = frac_test_slurp(c.ctrl_table, &size);
+    assert_int_equal(run(&c, b, size), HIL_OK);
+    free(b);
+    for (k = 1; k < n_sig; k++) {
+        if (sig_fault[k] && !sig_fault[k - 1]) {
+            episodes++;
+            t_fault = sig_t[k];
+        }
+        if (t_fault > 0.0 && t_zero < 0.0 && sig_u[k] == 0.0)
+            t_zero = sig_t[k];
+        if (!sig_fault[k] && sig_fault[k - 1])
+            t_clear = sig_t[k];
+    }
+    print_message("IMU dropout 1.0-1.1 s: fault at %.1f ms, torque 0 %.1f ms later, cleared at %.1f ms; "
+                  "final tip %.5f rad (pi/2 %+.1e); EMCY %llu\n", 1e3 * t_fault, 1e3 * (t_zero - t_fault),
+                  1e3 * t_clear, sig_tip[n_sig - 1], sig_tip[n_sig - 1] - FRAC_PI / 2,
+                  (unsigned long long)rig.ctrl.emcy_sent);
+    assert_int_equal(episodes, 1);
+    assert_int_equal(rig.ctrl.faults, 1);
+    assert_true(t_fault > 1.0 && t_fault <= 1.0 + 2.4e-3 + 4 * T + 1e-9);
+    assert_true(t_zero >= t_fault && t_zero - t_fault <= 10e-3 + 1e-9);
+    assert_true(t_clear > 1.1 && t_clear <= 1.1 + 2.4e-3 + 3 * T + 1e-9);
+    assert_true(rig.ctrl.emcy_sent >= 2); /* the fault and "no error" */
+    assert_close(sig_tip[n_sig - 1], FRAC_PI / 2, 5e-3);
+}
+
 /* Residual oscillation of the tip after the move with stiction: amplitude
  * (half peak-to-peak about the mean) and frequency (zero crossings) per
  * window of one second. */
@@ -268,6 +314,7 @@ int main(void)
         cmocka_unit_test(test_exp_a_and_b_torque_ranges_and_tracking),
         cmocka_unit_test(test_exp_c_and_d_track_and_d_lags_less),
         cmocka_unit_test(test_bad_table_never_enables_torque_and_reports_status),
+        cmocka_unit_test(test_imu_dropout_trips_watchdog_and_recovers_on_fresh_data),
         cmocka_unit_test(test_stiction_residual_oscillation_is_measured),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

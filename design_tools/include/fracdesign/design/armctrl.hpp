@@ -36,7 +36,7 @@ struct ArmctrlSpec {
     double T = 1.2e-3;        // cycle time [s] (Table 8.8, Ch. 2)
     double torque_limit = 250.0;  // |tau| [N m]: thesis [GAP]; the drive's peak is about 251 N m
     int wd_stale = 2;             // watchdog: max stale cycles
-    double wd_ramp = 200.0;       // watchdog: ramp to zero [N m/s]
+    double wd_ramp = 25000.0;     // watchdog: ramp to zero [N m/s]: the 250 N m limit to 0 in 10 ms (issue 9 fault reaction)
     double pre = 2.0, post = 2.5; // stable inversion horizon before t_s and after t_e [s] (thesis [GAP])
     PtpSpec traj{0.0, 1.5707963267948966, 1.5707963267948966, 6.283185307179586, 0.5, 2.0};  // Table 8.5
     // Validates; throws std::invalid_argument with a message naming the option.
