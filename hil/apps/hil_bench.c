@@ -233,9 +233,18 @@ static int run_processes(const struct app_opts *o, int realtime)
             a[7] = "--rt-priority";
             a[8] = prio;
         }
+        unlink(logp); /* its appearance below means the new logger is up */
         pid[4] = spawn(o->out, "hil_candump", a);
     }
-    pause_s(0.2); /* the logger listens before anyone sends */
+    /* the logger listens before anyone sends (the nodes' boot-up heartbeats
+     * are their first frames): it opens its log once its socket is bound */
+    for (i = 0; i < 1000 && access(logp, F_OK) != 0; i++)
+        pause_s(0.01);
+    if (access(logp, F_OK) != 0) {
+        fprintf(stderr, "hil_bench: hil_candump did not start within 10 s (see %s/hil_candump.txt)\n", o->out);
+        kill(pid[4], SIGTERM);
+        return 1;
+    }
     for (i = 1; i < 4; i++) {
         char *a[] = {bin[i], "--bus", bus[i], "--scenario", scen, "--idle-exit", "1", NULL, NULL, NULL, NULL, NULL};
         int k = 7;

@@ -15,7 +15,11 @@ mkdir -p "$work"
 port=$((40000 + ($$ % 1000) * 8)) # disjoint from test_hil_udp (20000..36000)
 bus() { echo "udp:$port:$1:5"; }
 "$bin/hil_candump" --bus "$(bus 4)" --out "$work/frames.log" --idle-exit 1 2> "$work/candump.txt" &
-sleep 0.2
+# the logger opens its log once its socket is bound: start the nodes (whose
+# boot-up heartbeats are the first frames) only then, not after a fixed sleep
+# that a loaded machine can outrun
+for _ in $(seq 200); do [ -e "$work/frames.log" ] && break; sleep 0.05; done
+[ -e "$work/frames.log" ] || { echo "FAIL: hil_candump did not start within 10 s"; exit 1; }
 "$bin/hil_plant" --bus "$(bus 1)" --scenario "$scen" --idle-exit 1 > "$work/plant.txt" &
 "$bin/hil_drive" --bus "$(bus 2)" --scenario "$scen" --idle-exit 1 > "$work/drive.txt" &
 "$bin/hil_imu" --bus "$(bus 3)" --scenario "$scen" --idle-exit 1 > "$work/imu.txt" &
