@@ -16,7 +16,10 @@ echo "HIL_QEMU_VCAN $(cat /sys/class/net/vcan0/type 2>/dev/null) $(cat /sys/clas
 S=/rig/scenario.txt
 B=socketcan:vcan0
 hil_candump --bus $B --out /tmp/frames.log --idle-exit 1.0 2>/tmp/candump.out &
-sleep 0.2 # the logger's socket is bound before any other node sends
+# the logger's socket is bound before any other node sends: it opens its
+# log once bound (busybox sh: a polling loop, at most 10 s)
+i=0
+while [ ! -e /tmp/frames.log ] && [ $i -lt 200 ]; do sleep 0.05; i=$((i + 1)); done
 hil_plant --bus $B --scenario $S --idle-exit 1.0 >/tmp/plant.out 2>&1 &
 hil_drive --bus $B --scenario $S --idle-exit 1.0 >/tmp/drive.out 2>&1 &
 hil_imu --bus $B --scenario $S --idle-exit 1.0 >/tmp/imu.out 2>&1 &
