@@ -531,6 +531,18 @@ static void exp_d_zero_gain_params(armctrl_params *par)
     par->Lqg.pL = L;
 }
 
+/* Builds the zero-gain Exp. D program on *par and runs its _INIT. */
+static void start_exp_d_zero_gain(armctrl *a, armctrl_params *par, plc_program *prog, armctrl_inputs *img_in,
+                                  armctrl_outputs *img_out)
+{
+    build_ff();
+    exp_d_zero_gain_params(par);
+    memset(img_in, 0, sizeof *img_in);
+    armctrl_program(a, prog, par, img_in, NULL, img_out);
+    armctrl_init(a);
+    assert_false(a->out.Error);
+}
+
 static void test_exp_d_sends_feedforward_torque_d_i_cycles_early(void **state)
 {
     static armctrl a;
@@ -540,12 +552,7 @@ static void test_exp_d_sends_feedforward_torque_d_i_cycles_early(void **state)
     armctrl_outputs img_out;
     UDINT k;
     (void)state;
-    build_ff();
-    exp_d_zero_gain_params(&par);
-    memset(&img_in, 0, sizeof img_in);
-    armctrl_program(&a, &prog, &par, &img_in, NULL, &img_out);
-    armctrl_init(&a);
-    assert_false(a.out.Error);
+    start_exp_d_zero_gain(&a, &par, &prog, &img_in, &img_out);
     for (k = 0; k < 1500; k++) {
         /* the counter runs from the Start edge at cycle 1: table time (k - 1) T */
         UDINT idx = (k > 0 ? k - 1 : 0) + 4;
@@ -584,12 +591,7 @@ static void test_watchdog_fault_clears_on_acknowledge_once_fresh(void **state)
     UDINT k = 0, drive = 0, imu = 0;
     int phase;
     (void)state;
-    build_ff();
-    exp_d_zero_gain_params(&par);
-    memset(&img_in, 0, sizeof img_in);
-    armctrl_program(&a, &prog, &par, &img_in, NULL, &img_out);
-    armctrl_init(&a);
-    assert_false(a.out.Error);
+    start_exp_d_zero_gain(&a, &par, &prog, &img_in, &img_out);
     for (phase = 0; phase < 2; phase++) {
         /* in motion (table time 0.96 s / 1.56 s): the feedforward torque is not 0 */
         UDINT k0 = phase == 0 ? 800 : 1300;

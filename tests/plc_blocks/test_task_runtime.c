@@ -434,6 +434,27 @@ static void idle_programs(idle_fixture *f, plc_io *out, plc_program *bg, plc_pro
     fg->name = "Fg"; fg->init = fg_init; fg->cyclic = fg_cyclic; fg->exit = fg_exit; fg->ctx = f;
 }
 
+/* The idle-class fixture registered as Bg (idle) and Fg, built from `text`
+ * and started. */
+typedef struct idle_bench {
+    idle_fixture f;
+    plc_io out;
+    plc_program bg, fg;
+    const plc_program *reg[2];
+    plc_rt_config cfg;
+    plc_rt rt;
+} idle_bench;
+
+static void idle_bench_start(idle_bench *b, const char *text)
+{
+    idle_programs(&b->f, &b->out, &b->bg, &b->fg);
+    b->reg[0] = &b->bg;
+    b->reg[1] = &b->fg;
+    load(&b->cfg, text);
+    build(&b->rt, &b->cfg, b->reg, 2);
+    assert_int_equal(plc_rt_start(&b->rt), PLC_RT_OK);
+}
+
 #define TWO_CLASSES "[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\n" \
                     "[cyclic1]\nduration_us = 1200\nsim_cost_us = 300\n[cyclic2]\nduration_us = 600\nsim_cost_us = 100\n"
 
@@ -544,73 +565,57 @@ static void test_idle_class_runs_in_leftover_time_and_every_class_preempts_it(vo
 
 static void test_idle_class_runs_last_and_exits_first(void **state)
 {
-    static idle_fixture f;
-    plc_io out;
-    plc_program bg, fg;
-    const plc_program *reg[2];
-    plc_rt_config cfg;
-    plc_rt rt;
+    static idle_bench b;
     (void)state;
-    idle_programs(&f, &out, &bg, &fg);
-    reg[0] = &bg;
-    reg[1] = &fg;
     /* the idle class is configured first in the file and still runs last */
-    load(&cfg, "[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\n"
-               "[idle]\nsim_cost_us = 250\nprograms = Bg\n[cyclic8]\nduration_us = 1200\nsim_cost_us = 300\nprograms = Fg\n");
-    build(&rt, &cfg, reg, 2);
-    assert_int_equal(plc_rt_start(&rt), PLC_RT_OK);
+    idle_bench_start(&b, "[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\n"
+                         "[idle]\nsim_cost_us = 250\nprograms = Bg\n[cyclic8]\nduration_us = 1200\nsim_cost_us = 300\n"
+                         "programs = Fg\n");
     /* [0, 1200): Fg 0..300, iterations start at 300, 550, 800, 1050 */
-    assert_int_equal(plc_rt_run_sim(&rt, 12), PLC_RT_OK);
-    plc_rt_stop(&rt);
-    f.order[f.n_order] = '\0';
-    assert_string_equal(f.order, "IiCccccxX");
-    assert_int_equal(rt.stats[PLC_RT_IDLE_INDEX].cycles, 3);
+    assert_int_equal(plc_rt_run_sim(&b.rt, 12), PLC_RT_OK);
+    plc_rt_stop(&b.rt);
+    b.f.order[b.f.n_order] = '\0';
+    assert_string_equal(b.f.order, "IiCccccxX");
+    assert_int_equal(b.rt.stats[PLC_RT_IDLE_INDEX].cycles, 3);
 }
 
 static void test_idle_class_starves_without_violations(void **state)
 {
-    static idle_fixture f;
-    plc_io out;
-    plc_program bg, fg;
-    const plc_program *reg[2];
-    plc_rt_config cfg;
-    plc_rt rt;
+    static idle_bench b;
+    idle_fixture *const fx = &b.f;
+    plc_rt_config *const cfg = &b.cfg;
+    plc_rt *const rt = &b.rt;
     (void)state;
-    idle_programs(&f, &out, &bg, &fg);
-    reg[0] = &bg;
-    reg[1] = &fg;
     /* the cyclic classes take every microsecond: the idle class never starts */
-    load(&cfg, "[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\n"
-               "[cyclic1]\nduration_us = 1200\nsim_cost_us = 1200\n[idle]\nsim_cost_us = 100\nprograms = Bg\n");
-    build(&rt, &cfg, reg, 2);
-    assert_int_equal(plc_rt_start(&rt), PLC_RT_OK);
-    assert_int_equal(plc_rt_run_sim(&rt, 120), PLC_RT_OK);
-    assert_int_equal(f.calls, 0);
-    assert_int_equal(rt.stats[PLC_RT_IDLE_INDEX].cycles, 0);
-    assert_int_equal(rt.stats[0].cycles, 10);
-    assert_int_equal(rt.stats[0].violations + rt.stats[PLC_RT_IDLE_INDEX].violations, 0);
-    plc_rt_stop(&rt);
+    idle_bench_start(&b, "[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\n"
+                         "[cyclic1]\nduration_us = 1200\nsim_cost_us = 1200\n[idle]\nsim_cost_us = 100\nprograms = Bg\n");
+    assert_int_equal(plc_rt_run_sim(rt, 120), PLC_RT_OK);
+    assert_int_equal(fx->calls, 0);
+    assert_int_equal(rt->stats[PLC_RT_IDLE_INDEX].cycles, 0);
+    assert_int_equal(rt->stats[0].cycles, 10);
+    assert_int_equal(rt->stats[0].violations + rt->stats[PLC_RT_IDLE_INDEX].violations, 0);
+    plc_rt_stop(rt);
 
     /* one iteration far longer than any cycle (5 ms of CPU, 900 us left
      * per 1.2 ms): it spans many cycles, is preempted at each, ends after
      * 5.6 cycles and is never reported; service mode is not entered */
-    f.calls = 0;
-    load(&cfg, "[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\nviolation_reaction = service\n"
-               "[cyclic1]\nduration_us = 1200\nsim_cost_us = 300\n[idle]\nsim_cost_us = 5000\nprograms = Bg\n");
-    build(&rt, &cfg, reg, 2);
-    assert_int_equal(plc_rt_start(&rt), PLC_RT_OK);
-    assert_int_equal(plc_rt_run_sim(&rt, 120), PLC_RT_OK);
-    assert_false(rt.service);
+    fx->calls = 0;
+    load(cfg, "[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\nviolation_reaction = service\n"
+              "[cyclic1]\nduration_us = 1200\nsim_cost_us = 300\n[idle]\nsim_cost_us = 5000\nprograms = Bg\n");
+    build(rt, cfg, b.reg, 2);
+    assert_int_equal(plc_rt_start(rt), PLC_RT_OK);
+    assert_int_equal(plc_rt_run_sim(rt, 120), PLC_RT_OK);
+    assert_false(rt->service);
     /* 12 ms - 10 x 300 us = 9 ms left = 1.8 iterations; the first runs
      * from 300 us to 6.8 ms (5 x 900 us, then 500 us after the 6th cycle),
      * preempted at each of the 5 releases in between, the second from 6.8 ms */
-    assert_int_equal(rt.stats[PLC_RT_IDLE_INDEX].cycles, 1);
-    assert_int_equal(rt.stats[PLC_RT_IDLE_INDEX].response_ns_max, 6500 * US);
-    assert_int_equal(rt.stats[PLC_RT_IDLE_INDEX].preempted, 9);
-    assert_int_equal(f.calls, 2);
-    assert_int_equal(rt.stats[0].violations + rt.stats[PLC_RT_IDLE_INDEX].violations, 0);
-    assert_int_equal(rt.stats[0].response_ns_max, 300 * US);
-    plc_rt_stop(&rt);
+    assert_int_equal(rt->stats[PLC_RT_IDLE_INDEX].cycles, 1);
+    assert_int_equal(rt->stats[PLC_RT_IDLE_INDEX].response_ns_max, 6500 * US);
+    assert_int_equal(rt->stats[PLC_RT_IDLE_INDEX].preempted, 9);
+    assert_int_equal(fx->calls, 2);
+    assert_int_equal(rt->stats[0].violations + rt->stats[PLC_RT_IDLE_INDEX].violations, 0);
+    assert_int_equal(rt->stats[0].response_ns_max, 300 * US);
+    plc_rt_stop(rt);
 }
 
 /* ---- wall clock ---- */
