@@ -24,21 +24,13 @@
 #include "fracdesign/design/armctrl.hpp"
 #include "fracdesign/tables/ptable.hpp"
 #include <nlohmann/json.hpp>
+#include "run_command.hpp"
 
 using namespace fracdesign;
 
 namespace {
 
-std::string run(const std::string& cmd, int* status)
-{
-    FILE* f = popen((cmd + " 2>&1").c_str(), "r");
-    std::string out;
-    char buf[512];
-    while (f && std::fgets(buf, sizeof buf, f)) out += buf;
-    const int st = f ? pclose(f) : -1;
-    *status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-    return out;
-}
+std::string run(const std::string& cmd, int* status) { return run_command(cmd, status); }
 
 std::string tmpdir()
 {

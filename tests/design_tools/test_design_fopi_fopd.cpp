@@ -7,6 +7,7 @@
 #include <string>
 
 #include "fracdesign/design/fopi_fopd.hpp"
+#include "run_command.hpp"
 
 using namespace fracdesign::design;
 
@@ -25,14 +26,7 @@ GharabPlant robot()
 
 std::string run_cli(const std::string& args, int* status)
 {
-    const std::string cmd = std::string(FRACDESIGN_EXE) + " " + args + " 2>&1";
-    FILE* f = popen(cmd.c_str(), "r");
-    std::string out;
-    char buf[512];
-    while (f && std::fgets(buf, sizeof buf, f)) out += buf;
-    const int st = f ? pclose(f) : -1;
-    *status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-    return out;
+    return run_command(std::string(FRACDESIGN_EXE) + " " + args, status);
 }
 }  // namespace
 

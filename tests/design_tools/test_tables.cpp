@@ -12,6 +12,7 @@
 
 #include "frac/ptable.h"
 #include "fracdesign/tables/ptable.hpp"
+#include "run_command.hpp"
 
 using namespace fracdesign::tables;
 
@@ -37,16 +38,7 @@ ParamTable sample(RealType r)
     return t;
 }
 
-std::string run(const std::string& cmd, int* status)
-{
-    FILE* f = popen((cmd + " 2>&1").c_str(), "r");
-    std::string out;
-    char buf[512];
-    while (f && std::fgets(buf, sizeof buf, f)) out += buf;
-    const int st = f ? pclose(f) : -1;
-    *status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-    return out;
-}
+std::string run(const std::string& cmd, int* status) { return run_command(cmd, status); }
 
 std::string tmpdir()
 {
