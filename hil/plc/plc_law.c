@@ -58,12 +58,7 @@ int hil_plc_law_init_exp_a(struct hil_plc_law *L, double T, double I_M, double I
         return HIL_E_ARG;
     memset(L, 0, sizeof *L);
     /* Table 8.5 point-to-point move */
-    tp.q_s = 0.0;
-    tp.q_e = FRAC_PI / 2;
-    tp.dq_max = FRAC_PI / 2;
-    tp.ddq_max = 2 * FRAC_PI;
-    tp.t_start = 0.5;
-    tp.duration = 1.5;
+    armctrl_table_8_5_move(&tp);
     if (frac_traj_init(&L->traj, &tp) != FRAC_OK)
         return HIL_E_ARG;
     /* rbFFC (4.14)-(4.17): link at the trajectory, motor ahead by the spring

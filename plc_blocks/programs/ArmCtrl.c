@@ -356,6 +356,16 @@ void armctrl_exit(void *ctx)
     a->out.TorqueSetpoint = 0.0f;
 }
 
+void armctrl_table_8_5_move(frac_traj_params *tp)
+{
+    tp->q_s = 0.0;
+    tp->q_e = FRAC_PI / 2;
+    tp->dq_max = FRAC_PI / 2;
+    tp->ddq_max = 2 * FRAC_PI;
+    tp->t_start = 0.5;
+    tp->duration = 1.5;
+}
+
 void armctrl_program(armctrl *a, plc_program *prog, const armctrl_params *par, armctrl_inputs *image_in,
                      imuread_outputs *imu_image, armctrl_outputs *image_out)
 {

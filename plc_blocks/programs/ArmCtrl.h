@@ -31,6 +31,7 @@
 #include "plc_rt.h"
 #include "frac/mat.h"
 #include "frac/ptable.h"
+#include "frac/traj.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -167,6 +168,14 @@ void armctrl_program(armctrl *a, plc_program *prog, const armctrl_params *par, a
 void armctrl_program_table(armctrl *a, plc_program *prog, const void *table, UDINT size,
                            armctrl_table_storage *storage, armctrl_inputs *image_in, imuread_outputs *imu_image,
                            armctrl_outputs *image_out);
+
+/*
+ * The point-to-point move of Table 8.5 (seed 004, notes 004b 2.2) that the
+ * feedforward tables play: q 0 -> pi/2 rad, dq_max pi/2 rad/s, ddq_max
+ * 2 pi rad/s^2, start t_s = 0.5 s, duration 1.5 s (t_e = 2 s), for
+ * frac_traj_init (frac/traj.h).
+ */
+void armctrl_table_8_5_move(frac_traj_params *tp);
 
 void armctrl_init(void *ctx);   /* _INIT */
 void armctrl_cyclic(void *ctx); /* _CYCLIC */

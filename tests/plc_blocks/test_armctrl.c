@@ -66,12 +66,7 @@ static void build_ff(void)
 {
     frac_traj_params tp;
     int i;
-    tp.q_s = 0.0;
-    tp.q_e = FRAC_PI / 2;
-    tp.dq_max = FRAC_PI / 2;
-    tp.ddq_max = 2 * FRAC_PI;
-    tp.t_start = 0.5;
-    tp.duration = 1.5;
+    armctrl_table_8_5_move(&tp);
     assert_int_equal(frac_traj_init(&traj, &tp), FRAC_OK);
     for (i = 0; i < N_FF; i++) {
         frac_real d[5], th, ddth;

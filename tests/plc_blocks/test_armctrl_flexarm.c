@@ -205,13 +205,7 @@ static void run_flexarm(flexbench *b, char exp, int delayed)
     memset(b, 0, sizeof *b);
     load_plant(&b->pl);
     plant_outputs(&b->pl);
-    /* Table 8.5: 0 -> pi/2, dq_max pi/2 rad/s, ddq_max 2 pi rad/s^2, t_s = 0.5 s, t_e = 2 s */
-    tp.q_s = 0.0;
-    tp.q_e = FRAC_PI / 2;
-    tp.dq_max = FRAC_PI / 2;
-    tp.ddq_max = 2 * FRAC_PI;
-    tp.t_start = 0.5;
-    tp.duration = 1.5;
+    armctrl_table_8_5_move(&tp);
     assert_int_equal(frac_traj_init(&b->traj, &tp), FRAC_OK);
     if (delayed) {
         b->torque_delay = 48; /* d_i T = 4.8 ms */
