@@ -2,7 +2,9 @@
  * torque delay, current-loop lag, torque limits, RPDO timeout), IMU (reading
  * latency, seeded noise, quantization, saturation), rigid test plant (against
  * the closed-form solution) and controller (IMU watchdog fault reaction and
- * recovery); malformed frames counted and ignored with the state untouched. */
+ * recovery); malformed frames counted and ignored with the state untouched;
+ * the drive's torque effects for the gap bench (dead zone and gain act on
+ * the shaft torque only; their scenario keys and run metadata). */
 #include <string.h>
 #include "frac_test.h"
 #include "hil/canopen.h"
@@ -11,6 +13,7 @@
 #include "hil/imu.h"
 #include "hil/node.h"
 #include "hil/plant.h"
+#include "hil/rig.h"
 
 static struct hil_can_frame nmt_start(void)
 {
@@ -289,6 +292,105 @@ static void test_drive_encoder_counts_with_its_resolution_and_differences_veloci
     }
     p.encoder_bits = 21;
     assert_int_equal(hil_drive_init(&d, &p, &o), HIL_E_ARG);
+}
+
+/* ---- the drive's torque effects for the gap bench (drive.deadzone, drive.gain) ---- */
+
+/* Enabled drive with delay 1, an ideal current loop and the torque effects
+ * (deadzone, gain); after one SYNC with command `cmd` pending: *shaft = end
+ * torque sent to the plant, *reported = the torque actual of the next TPDO2
+ * (the drive reports the commanded torque, hil/drive.h). */
+static void shaft_and_reported(double deadzone, double gain, double cmd, double *shaft, double *reported)
+{
+    struct hil_drive d;
+    struct hil_drive_params p;
+    struct hil_out o;
+    struct hil_can_frame f;
+    struct hil_drive_tpdo2 t2;
+    const struct hil_can_frame *t;
+    hil_drive_params_default(&p);
+    p.delay = 1;
+    p.tau_current = 0.0;
+    p.deadzone = deadzone;
+    p.gain = gain;
+    o.n = 0;
+    assert_int_equal(hil_drive_init(&d, &p, &o), HIL_OK);
+    enable_drive(&d, &o);
+    f = rpdo(HIL_CW_ENABLE_OP, cmd);
+    assert_int_equal(hil_drive_on_frame(&d, &f, &o), HIL_OK);
+    *shaft = sync_torque(&d, &o);
+    f = rpdo(HIL_CW_ENABLE_OP, cmd);
+    assert_int_equal(hil_drive_on_frame(&d, &f, &o), HIL_OK);
+    (void)sync_torque(&d, &o); /* o: this SYNC's frames, TPDO2 among them */
+    t = find(&o, HIL_COB_TPDO2(HIL_NODE_DRIVE));
+    assert_non_null(t);
+    assert_int_equal(hil_co_drive_tpdo2_decode(t, &t2), HIL_OK);
+    *reported = t2.torque_mnm * HIL_TORQUE_LSB;
+}
+
+static void test_drive_dead_zone_and_gain_act_on_the_shaft_torque_only(void **state)
+{
+    double shaft, rep;
+    (void)state;
+    shaft_and_reported(0.0, 1.0, 20.0, &shaft, &rep);
+    assert_close(shaft, 20.0, 1e-9);
+    shaft_and_reported(5.0, 1.0, 20.0, &shaft, &rep);
+    assert_close(shaft, 15.0, 1e-9);
+    assert_close(rep, 20.0, 1e-9);
+    shaft_and_reported(5.0, 1.0, -20.0, &shaft, &rep);
+    assert_close(shaft, -15.0, 1e-9);
+    shaft_and_reported(5.0, 1.0, 4.0, &shaft, &rep);
+    assert_close(shaft, 0.0, 1e-12);
+    assert_close(rep, 4.0, 1e-9);
+    shaft_and_reported(0.0, 1.25, 20.0, &shaft, &rep);
+    assert_close(shaft, 25.0, 1e-9);
+    assert_close(rep, 20.0, 1e-9);
+    shaft_and_reported(2.0, 0.5, -20.0, &shaft, &rep);
+    assert_close(shaft, -9.0, 1e-9);
+}
+
+static void test_drive_rejects_negative_dead_zone_and_non_positive_gain(void **state)
+{
+    struct hil_drive d;
+    struct hil_drive_params p;
+    struct hil_out o;
+    (void)state;
+    o.n = 0;
+    hil_drive_params_default(&p);
+    assert_close(p.gain, 1.0, 0.0);
+    assert_close(p.deadzone, 0.0, 0.0);
+    p.deadzone = -1.0;
+    assert_int_equal(hil_drive_init(&d, &p, &o), HIL_E_ARG);
+    hil_drive_params_default(&p);
+    p.gain = 0.0;
+    assert_int_equal(hil_drive_init(&d, &p, &o), HIL_E_ARG);
+    p.gain = -1.0;
+    assert_int_equal(hil_drive_init(&d, &p, &o), HIL_E_ARG);
+}
+
+static void test_rig_keys_set_dead_zone_and_gain_and_the_metadata_records_them(void **state)
+{
+    struct hil_rig_config c;
+    char buf[16384];
+    FILE *f;
+    size_t n;
+    (void)state;
+    hil_rig_config_default(&c);
+    assert_int_equal(hil_rig_config_set(&c, "drive.deadzone", "3.5"), HIL_OK);
+    assert_int_equal(hil_rig_config_set(&c, "drive.gain", "0.8"), HIL_OK);
+    assert_int_equal(hil_rig_config_set(&c, "drive.gain", "x"), HIL_E_FORMAT);
+    assert_close(c.drive.deadzone, 3.5, 0.0);
+    assert_close(c.drive.gain, 0.8, 0.0);
+    f = tmpfile();
+    assert_non_null(f);
+    assert_int_equal(hil_rig_meta_begin(&c, "lockstep", f), HIL_OK);
+    rewind(f);
+    n = fread(buf, 1, sizeof buf - 1, f);
+    buf[n] = '\0';
+    fclose(f);
+    assert_non_null(strstr(buf, "\"drive.deadzone\": 3.5,"));
+    assert_non_null(strstr(buf, "\"drive.gain\": 0.80000000000000004,"));
+    assert_non_null(strstr(buf, "\"torque_deadzone\": 3.5, \"torque_gain\": 0.80000000000000004}"));
 }
 
 /* Feeds the IMU one plant half-step (RIG_TIPPOS + RIG_TIP). */
@@ -764,6 +866,9 @@ int main(void)
         cmocka_unit_test(test_drive_faults_and_sends_emcy_when_rpdos_stop),
         cmocka_unit_test(test_drive_counts_and_ignores_malformed_frames),
         cmocka_unit_test(test_drive_encoder_counts_with_its_resolution_and_differences_velocity),
+        cmocka_unit_test(test_drive_dead_zone_and_gain_act_on_the_shaft_torque_only),
+        cmocka_unit_test(test_drive_rejects_negative_dead_zone_and_non_positive_gain),
+        cmocka_unit_test(test_rig_keys_set_dead_zone_and_gain_and_the_metadata_records_them),
         cmocka_unit_test(test_imu_reading_leaves_four_acquisitions_after_sampling),
         cmocka_unit_test(test_imu_jitter_delays_readings_by_one_acquisition),
         cmocka_unit_test(test_imu_noise_is_seeded_and_quantized),
