@@ -13,15 +13,18 @@ static const char table_2_3[] =
     "[cyclic1]\nduration_us = 1200\nsim_cost_us = 300\nprograms = ArmCtrl\n"
     "[cyclic2]\nduration_us = 600\nsim_cost_us = 50\nprograms = ImuRead\n";
 
-/* Tip reference of the logs: psi_ref[i] = int_0^{t_i} dpsi_L* (trapezoid). */
-static void integrate_ref(struct hil_plc_law *L)
+/* Tip reference of the logs: psi_ref[i] = int_0^{t_i} dpsi_L* (trapezoid),
+ * looked up over table time by psi_lut. */
+static int integrate_ref(struct hil_plc_law *L)
 {
     const TrajLUTParType *f = &L->P->Ff;
-    UDINT i;
+    UDINT i, n = f->N < ARMCTRL_FF_MAX ? f->N : ARMCTRL_FF_MAX;
     L->psi_ref[0] = 0;
-    for (i = 1; i < f->N && i < ARMCTRL_FF_MAX; i++)
+    for (i = 1; i < n; i++)
         L->psi_ref[i] = L->psi_ref[i - 1] +
                         (frac_real)0.5 * (frac_real)f->Dt * (f->pData[ARMCTRL_FF_DPSI][i - 1] + f->pData[ARMCTRL_FF_DPSI][i]);
+    return frac_lut1_init_uniform(&L->psi_lut, (frac_real)f->T0, (frac_real)f->Dt, L->psi_ref, n, FRAC_LUT_LINEAR,
+                                  FRAC_LUT_CLAMP, NULL);
 }
 
 /* Registers ArmCtrl (filled by the caller) and ImuRead, starts the runtime
@@ -44,7 +47,11 @@ static int start(struct hil_plc_law *L, char *err, size_t errlen)
                      (unsigned)L->a.out.StatusID);
         return HIL_E_STATE;
     }
-    integrate_ref(L);
+    if (integrate_ref(L) != FRAC_OK) {
+        if (err && errlen)
+            snprintf(err, errlen, "the feedforward grid (T0, dt, N) gives no tip reference");
+        return HIL_E_STATE;
+    }
     return HIL_OK;
 }
 
@@ -158,17 +165,9 @@ int hil_plc_law_step(void *ctx, const struct hil_ctrl_law_in *in, double *torque
     *torque = L->ctrl_img.TorqueEnable ? (double)L->ctrl_img.TorqueSetpoint : 0.0;
     *ref = 0.0;
     if (!L->a.fault) {
-        const TrajLUTParType *f = &L->P->Ff;
-        double s = ((double)L->ctrl_img.Counter * (double)L->P->CycleTime - (double)f->T0) / (double)f->Dt;
-        double last = (double)(f->N - 1);
-        if (s <= 0.0)
-            *ref = (double)L->psi_ref[0];
-        else if (s >= last)
-            *ref = (double)L->psi_ref[f->N - 1];
-        else {
-            UDINT i = (UDINT)s;
-            *ref = (double)L->psi_ref[i] + (s - (double)i) * (double)(L->psi_ref[i + 1] - L->psi_ref[i]);
-        }
+        frac_real r = 0;
+        (void)frac_lut1_eval(&L->psi_lut, (frac_real)((double)L->ctrl_img.Counter * (double)L->P->CycleTime), &r);
+        *ref = (double)r;
     }
     if (L->ctrl_img.Error)
         return L->ctrl_img.StatusID ? -(int)L->ctrl_img.StatusID : -1;

@@ -46,6 +46,7 @@
 #define HIL_PLC_LAW_H
 #include "ArmCtrl.h"
 #include "ImuRead.h"
+#include "frac/lut.h"
 #include "frac/traj.h"
 #include "hil/ctrl.h"
 #include "plc_rt.h"
@@ -67,6 +68,7 @@ struct hil_plc_law {
     armctrl_table_storage store;   /* table variant: the values ArmCtrl's _INIT copies */
     const armctrl_params *P;       /* the parameters in use (par or store.par) */
     frac_real psi_ref[ARMCTRL_FF_MAX]; /* integral of the dpsi_L* row, per table sample */
+    frac_lut1 psi_lut;             /* psi_ref over table time (linear, clamped): the logs' reference */
     int started;
     int io_up;                     /* the drive is enabled and an IMU reading came: the tasks run */
     uint64_t cycles_run;           /* controller cycles the task runtime has run */
