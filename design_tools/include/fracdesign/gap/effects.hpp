@@ -38,10 +38,22 @@ Effect effect_from_name(const std::string& name);  // std::invalid_argument if u
 // Effects acting through the velocity (friction, fractional damping) need gap.velocity in the model.
 bool needs_velocity(Effect e);
 
+// Where an effect acts. Backlash and fractional damping act at the force
+// input (a play on u, c D^alpha of the velocity output to ground) or, when
+// the model declares one (gap.coupling), in its spring: a play in the
+// deflection, c D^alpha of the deflection in parallel with the spring.
+enum class Site { force_input, coupling };
+
 struct EffectInstance {
     Effect kind;
     std::vector<double> params;  // physical values, in the order of param_names()
+    Site site = Site::force_input;
 };
+
+// Effects that can act in a declared coupling (backlash, fractional_damping).
+bool coupling_capable(Effect e);
+// "force input" or "coupling <name>".
+std::string site_label(Site s, const NominalModel& m);
 
 // Parameter names of an effect; `outputs` are the compared outputs (per-channel parameters).
 std::vector<std::string> param_names(Effect e, const std::vector<std::string>& outputs);
@@ -77,6 +89,7 @@ struct ReplayTrace {
     Eigen::MatrixXd y;      // samples x compared outputs, as the sensors would read them
     Eigen::VectorXd u;      // plant force input after input effects and friction
     Eigen::VectorXd v;      // friction velocity (zero when the model names none)
+    Eigen::VectorXd twist;  // coupling deflection twist . x (zero when the model declares no coupling)
 };
 
 // Replays the nominal model with the given effects over the first `n`

@@ -31,6 +31,32 @@ struct ClosedLoop {
     std::vector<std::string> additive;
 };
 
+// A spring inside the plant (e.g. a gear between motor and link) on which
+// backlash and fractional damping may act instead of at the force input
+// (docs/gap.md "coupling"): its deflection is twist . x, its nominal torque
+// stiffness * (twist . x), and an extra spring torque D held over one sample
+// moves the state by torque * D (x(k+1) = A x + B u + torque D).
+//
+// A play in the spring makes contact within a sample (a stiff spring hits
+// in a fraction of a 1 ms sample), so the replay sub-steps the block of
+// plant states the spring belongs to (`states`, default all): from the
+// block's discrete matrix Phi = A[S,S] it takes the generator
+// Ac = log(Phi)/Ts and splits each sample into `substeps` exact steps of
+// Phi_m = e^{Ac Ts/m}, with the sample's forcing (inputs and the other
+// states, known only through x(k+1) - Phi x(k)) held constant over it.
+// Without correction the sub-steps end exactly at the nominal x(k+1).
+struct Coupling {
+    std::string name;
+    Eigen::RowVectorXd twist;  // 1 x n, deflection from the plant state
+    Eigen::VectorXd torque;    // n, discrete at Ts: the state change per unit of extra spring torque over one sample
+    double stiffness = 0.0;    // nominal spring rate, torque per unit deflection
+    std::vector<int> states;   // S: the sub-stepped block (twist and torque vanish outside it)
+    int substeps = 8;          // m
+    Eigen::MatrixXd Phi, Phi_m, Gamma_m, Gamma_inv;  // A[S,S], e^{Ac Ts/m}, int_0^{Ts/m} e^{Ac s} ds, (int_0^Ts ..)^-1
+    Eigen::VectorXd torque_m;  // Gamma_m Gamma^-1 torque[S]: one sub-step of a unit extra spring torque
+    Eigen::RowVectorXd twist_s;  // twist[S]
+};
+
 struct Mode {
     double f_hz;  // natural frequency
     double zeta;  // damping ratio
@@ -45,6 +71,8 @@ struct NominalModel {
     ClosedLoop loop;
     int velocity = -1;     // model output used as the friction velocity (-1: none)
     int force_input = 0;   // plant input where friction, dead zone, backlash, gain and saturation act
+    bool has_coupling = false;
+    Coupling coupling;     // gap.coupling, when has_coupling
 
     int output_index(const std::string& name) const;  // -1 if absent
     // Oscillatory and real modes of the nominal (loop closed when closed_loop,
