@@ -133,3 +133,11 @@ TEST(GapCli, refuses_a_model_whose_input_is_not_in_the_data)
     m.replace(m.find("\"force_input\": \"u\""), 18, "\"force_input\": \"tau\"");
     expect_refused(csv("t,u,x,v", 300), "model/data mismatch", m);
 }
+
+TEST(GapCli, refuses_a_malformed_coupling)
+{
+    std::string m = kModel;
+    m.replace(m.find("\"force_input\": \"u\""), 18,
+              "\"force_input\": \"u\", \"coupling\": {\"twist\": [1, 0], \"torque\": [0, 1], \"stiffness\": 0}");
+    expect_refused(csv("t,u,x,v", 300), "'stiffness' must be a finite number > 0", m);
+}
