@@ -15,6 +15,7 @@
 #include <stdexcept>
 
 #include "fracdesign/gap/diagnosis.hpp"
+#include "gap_drive.hpp"
 
 using namespace fracdesign::gap;
 
@@ -52,17 +53,7 @@ nlohmann::json plant_doc()
 // Torque with reversals: the gear crosses its play both ways.
 Signals drive()
 {
-    Signals s;
-    s.source = "synthetic";
-    s.names = {"u", "wm", "wl"};
-    s.Ts = kTs;
-    s.values = Eigen::MatrixXd::Zero(kN, 3);
-    for (Eigen::Index k = 0; k < kN; ++k) {
-        const double t = double(k) * kTs;
-        s.values(k, 0) = 4.0 * std::sin(2 * M_PI * 0.37 * t) + 2.0 * std::sin(2 * M_PI * 1.3 * t + 1.0) +
-                         1.0 * std::sin(2 * M_PI * 3.1 * t + 2.0);
-    }
-    return s;
+    return multisine_record({"u", "wm", "wl"}, kTs, kN, {{4.0, 0.37, 0.0}, {2.0, 1.3, 1.0}, {1.0, 3.1, 2.0}});
 }
 
 // RK4 reference with a play of width w in the spring; returns [wm, wl] per sample

@@ -10,6 +10,7 @@
 #include <random>
 
 #include "fracdesign/gap/diagnosis.hpp"
+#include "gap_drive.hpp"
 
 using namespace fracdesign::gap;
 
@@ -37,17 +38,7 @@ nlohmann::json plant_doc()
 
 Signals drive()
 {
-    Signals s;
-    s.source = "synthetic";
-    s.names = {"u", "x", "v"};
-    s.Ts = kTs;
-    s.values = Eigen::MatrixXd::Zero(kN, 3);
-    for (Eigen::Index k = 0; k < kN; ++k) {
-        const double t = double(k) * kTs;
-        s.values(k, 0) = 10.0 * std::sin(2 * M_PI * 0.23 * t) + 5.0 * std::sin(2 * M_PI * 0.71 * t + 1.0) +
-                         3.0 * std::sin(2 * M_PI * 1.9 * t + 2.0) + 2.0 * std::sin(2 * M_PI * 3.3 * t + 0.5);
-    }
-    return s;
+    return multisine_record({"u", "x", "v"}, kTs, kN, {{10.0, 0.23, 0.0}, {5.0, 0.71, 1.0}, {3.0, 1.9, 2.0}, {2.0, 3.3, 0.5}});
 }
 
 // The same plant under a PD position loop: the reference r drives it, and the
