@@ -252,3 +252,18 @@ TEST(GapBenchRun, gear_damping_is_found_in_the_gear)
     EXPECT_GE(r.result.verdict.shrink, 0.6);
     EXPECT_EQ(result_json(r.result)["verdict"]["sites"][0], "coupling");
 }
+
+// --require-goals exits 1 when a goal is missed (here: a gyro noise of 2 rad/s
+// buries the effects) and 0 when all are met (CTest's gap_bench_goals runs the
+// default 60 cases with it).
+TEST(GapBenchCli, require_goals_exits_1_when_a_goal_is_missed)
+{
+    const std::string base = std::string(FRACDESIGN_EXE) + " gap-bench --cases 3 --seed 1 --duration 1.2 --require-goals";
+    int rc = std::system((base + " --noise 2 > /dev/null").c_str());
+    ASSERT_TRUE(WIFEXITED(rc));
+    EXPECT_EQ(WEXITSTATUS(rc), 1);
+    rc = std::system((base + " --json --noise 2 > /dev/null").c_str());
+    EXPECT_EQ(WEXITSTATUS(rc), 1);
+    rc = std::system((std::string(FRACDESIGN_EXE) + " gap-bench --cases 3 --seed 1 --duration 1.2 --noise 2 > /dev/null").c_str());
+    EXPECT_EQ(WEXITSTATUS(rc), 0);
+}

@@ -12,8 +12,8 @@ namespace {
 
 int run_gap_bench(const std::vector<std::string>& argv)
 {
-    Args args(argv, {"json"});
-    args.check_known({"cases", "seed", "json", "out", "replay", "duration", "noise"});
+    Args args(argv, {"json", "require-goals"});
+    args.check_known({"cases", "seed", "json", "out", "replay", "duration", "noise", "require-goals"});
     gap::BenchOptions opt;
     const long cases = args.integer("cases", opt.cases), seed = args.integer("seed", long(opt.seed));
     const long replay = args.integer("replay", -1);
@@ -35,9 +35,13 @@ int run_gap_bench(const std::vector<std::string>& argv)
                   << ", seed " << seed << ", " << opt.duration << " s each, gyro noise " << opt.gyro_noise << " rad/s\n"
                   << "  case  truth                                  -> top-1 verdict\n";
     const nlohmann::json j = gap::run_bench(opt, json ? nullptr : &std::cout);
+    // --require-goals: exit 1 when a goal of issue 10 is missed (for CI).
+    const auto& g = j["goals"];
+    const bool all_met = g["accuracy_met"].get<bool>() && g["param_error_met"].get<bool>() && g["shrink_met"].get<bool>();
+    const int status = args.has("require-goals") && !all_met ? 1 : 0;
     if (json) {
         std::cout << j.dump(2) << "\n";
-        return 0;
+        return status;
     }
     const auto& s = j["score"];
     auto pct = [](const nlohmann::json& x) {
@@ -68,17 +72,17 @@ int run_gap_bench(const std::vector<std::string>& argv)
         std::printf("\n");
     }
     std::fflush(stdout);
-    const auto& g = j["goals"];
     std::cout << "goals: accuracy >= 90 % " << (g["accuracy_met"].get<bool>() ? "met" : "NOT met")
               << "; median parameter error <= 10 % " << (g["param_error_met"].get<bool>() ? "met" : "NOT met")
               << "; median shrink when found >= 80 % " << (g["shrink_met"].get<bool>() ? "met" : "NOT met") << "\n";
     if (!opt.out_dir.empty()) std::cout << "case files (scenario, signals, nominal, truth, result): " << opt.out_dir << "/case_NNN\n";
-    return 0;
+    return status;
 }
 
 CommandRegistrar reg({"gap-bench", "score the gap diagnosis against hidden effects injected on the HIL rig",
                       "usage: fracdesign gap-bench [--cases N] [--seed S] [--json] [--out DIR]\n"
-                      "                            [--replay CASE_ID] [--duration 2.4] [--noise 0.005]\n\n"
+                      "                            [--replay CASE_ID] [--duration 2.4] [--noise 0.005]\n"
+                      "                            [--require-goals]\n\n"
                       "For each case draws an effect (each of the 13 effect names and none equally often,\n"
                       "in shuffled rounds; sometimes a second effect) and its size, runs the lockstep HIL\n"
                       "rig in-process (two-mass plant, drive with 4-cycle delay, IMU, the bench's PD\n"
@@ -90,7 +94,9 @@ CommandRegistrar reg({"gap-bench", "score the gap diagnosis against hidden effec
                       "DIR/case_NNN/{scenario.txt, signals.csv, nominal.json, truth.json, result.json},\n"
                       "so `fracdesign gap --model nominal.json --data signals.csv` repeats the diagnosis.\n"
                       "Defaults: 28 cases, seed 1. --json prints everything (draws, scenario text,\n"
-                      "verdicts, score, confusion matrix). See docs/gap.md.\n",
+                      "verdicts, score, confusion matrix). --require-goals exits 1 when a goal is missed\n"
+                      "(accuracy >= 90 %, median parameter error <= 10 %, median shrink >= 80 %).\n"
+                      "See docs/gap.md.\n",
                       run_gap_bench});
 
 }  // namespace
