@@ -161,70 +161,87 @@ int hil_co_emcy_decode(const struct hil_can_frame *f, uint8_t *node, struct hil_
     return HIL_OK;
 }
 
+/* The drive PDOs carry a 16-bit word and a signed 32-bit value (6 bytes:
+ * RPDO1 controlword + torque, TPDO1 statusword + position) or two signed
+ * 32-bit values (8 bytes: TPDO2 velocity + torque), little-endian. */
+static void put_pdo(struct hil_can_frame *f, uint32_t id, int wide, uint32_t first, int32_t second)
+{
+    start(f, id, wide ? 8 : 6);
+    if (wide)
+        hil_put_u32(f->data, first);
+    else
+        hil_put_u16(f->data, (uint16_t)first);
+    hil_put_u32(f->data + (wide ? 4 : 2), (uint32_t)second);
+}
+
+static int get_pdo(const struct hil_can_frame *f, uint32_t id, int wide, uint32_t *first, int32_t *second)
+{
+    int st = expect(f, id, wide ? 8 : 6);
+    if (st != HIL_OK)
+        return st;
+    *first = wide ? hil_get_u32(f->data) : hil_get_u16(f->data);
+    *second = (int32_t)hil_get_u32(f->data + (wide ? 4 : 2));
+    return HIL_OK;
+}
+
 int hil_co_drive_rpdo_encode(struct hil_can_frame *f, const struct hil_drive_rpdo *p)
 {
     if (!f || !p)
         return HIL_E_ARG;
-    start(f, HIL_COB_RPDO1(HIL_NODE_DRIVE), 6);
-    hil_put_u16(f->data, p->controlword);
-    hil_put_u32(f->data + 2, (uint32_t)p->torque_mnm);
+    put_pdo(f, HIL_COB_RPDO1(HIL_NODE_DRIVE), 0, p->controlword, p->torque_mnm);
     return HIL_OK;
 }
 
 int hil_co_drive_rpdo_decode(const struct hil_can_frame *f, struct hil_drive_rpdo *p)
 {
-    int st = expect(f, HIL_COB_RPDO1(HIL_NODE_DRIVE), 6);
-    if (st != HIL_OK)
-        return st;
-    if (p) {
-        p->controlword = hil_get_u16(f->data);
-        p->torque_mnm = (int32_t)hil_get_u32(f->data + 2);
+    uint32_t w;
+    int32_t v;
+    int st = get_pdo(f, HIL_COB_RPDO1(HIL_NODE_DRIVE), 0, &w, &v);
+    if (st == HIL_OK && p) {
+        p->controlword = (uint16_t)w;
+        p->torque_mnm = v;
     }
-    return HIL_OK;
+    return st;
 }
 
 int hil_co_drive_tpdo1_encode(struct hil_can_frame *f, const struct hil_drive_tpdo1 *p)
 {
     if (!f || !p)
         return HIL_E_ARG;
-    start(f, HIL_COB_TPDO1(HIL_NODE_DRIVE), 6);
-    hil_put_u16(f->data, p->statusword);
-    hil_put_u32(f->data + 2, (uint32_t)p->position_inc);
+    put_pdo(f, HIL_COB_TPDO1(HIL_NODE_DRIVE), 0, p->statusword, p->position_inc);
     return HIL_OK;
 }
 
 int hil_co_drive_tpdo1_decode(const struct hil_can_frame *f, struct hil_drive_tpdo1 *p)
 {
-    int st = expect(f, HIL_COB_TPDO1(HIL_NODE_DRIVE), 6);
-    if (st != HIL_OK)
-        return st;
-    if (p) {
-        p->statusword = hil_get_u16(f->data);
-        p->position_inc = (int32_t)hil_get_u32(f->data + 2);
+    uint32_t w;
+    int32_t v;
+    int st = get_pdo(f, HIL_COB_TPDO1(HIL_NODE_DRIVE), 0, &w, &v);
+    if (st == HIL_OK && p) {
+        p->statusword = (uint16_t)w;
+        p->position_inc = v;
     }
-    return HIL_OK;
+    return st;
 }
 
 int hil_co_drive_tpdo2_encode(struct hil_can_frame *f, const struct hil_drive_tpdo2 *p)
 {
     if (!f || !p)
         return HIL_E_ARG;
-    start(f, HIL_COB_TPDO2(HIL_NODE_DRIVE), 8);
-    hil_put_u32(f->data, (uint32_t)p->velocity_urads);
-    hil_put_u32(f->data + 4, (uint32_t)p->torque_mnm);
+    put_pdo(f, HIL_COB_TPDO2(HIL_NODE_DRIVE), 1, (uint32_t)p->velocity_urads, p->torque_mnm);
     return HIL_OK;
 }
 
 int hil_co_drive_tpdo2_decode(const struct hil_can_frame *f, struct hil_drive_tpdo2 *p)
 {
-    int st = expect(f, HIL_COB_TPDO2(HIL_NODE_DRIVE), 8);
-    if (st != HIL_OK)
-        return st;
-    if (p) {
-        p->velocity_urads = (int32_t)hil_get_u32(f->data);
-        p->torque_mnm = (int32_t)hil_get_u32(f->data + 4);
+    uint32_t w;
+    int32_t v;
+    int st = get_pdo(f, HIL_COB_TPDO2(HIL_NODE_DRIVE), 1, &w, &v);
+    if (st == HIL_OK && p) {
+        p->velocity_urads = (int32_t)w;
+        p->torque_mnm = v;
     }
-    return HIL_OK;
+    return st;
 }
 
 static uint32_t imu_cob(int which)
