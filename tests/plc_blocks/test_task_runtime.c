@@ -35,6 +35,17 @@ static void expect_event(const ev_log *l, size_t i, plc_rt_event_kind kind, unsi
     }
 }
 
+/* Starts the runtime with every trace event recorded into `log` and runs
+ * `ticks` system ticks on the simulated clock. */
+static void run_traced(plc_rt *rt, ev_log *log, unsigned ticks)
+{
+    memset(log, 0, sizeof *log);
+    rt->trace_hook = record;
+    rt->trace_ctx = log;
+    assert_int_equal(plc_rt_start(rt), PLC_RT_OK);
+    assert_int_equal(plc_rt_run_sim(rt, ticks), PLC_RT_OK);
+}
+
 static void load(plc_rt_config *cfg, const char *text)
 {
     char err[256];
@@ -125,11 +136,7 @@ static void test_lower_class_number_runs_first_and_preempts(void **state)
                "[cyclic2]\nduration_us = 600\nsim_cost_us = 100\n"
                "[cyclic3]\nduration_us = 2400\nsim_cost_us = 600\n");
     build(&rt, &cfg, NULL, 0);
-    memset(&log, 0, sizeof log);
-    rt.trace_hook = record;
-    rt.trace_ctx = &log;
-    assert_int_equal(plc_rt_start(&rt), PLC_RT_OK);
-    assert_int_equal(plc_rt_run_sim(&rt, 24), PLC_RT_OK);
+    run_traced(&rt, &log, 24);
     expect_event(&log, i++, PLC_RT_EV_RELEASE, 1, 0);
     expect_event(&log, i++, PLC_RT_EV_RELEASE, 2, 0);
     expect_event(&log, i++, PLC_RT_EV_RELEASE, 3, 0);
@@ -384,41 +391,19 @@ static void note(idle_fixture *f, char c)
     }
 }
 
-static void bg_init(void *ctx)
-{
-    idle_fixture *f = (idle_fixture *)ctx;
-    note(f, 'i');
-}
+/* The programs' entry points record their calls in order: Bg (idle) as
+ * i, c, x and Fg as I, C, X; Bg's cyclic also counts itself into its output. */
+static void bg_init(void *ctx) { note((idle_fixture *)ctx, 'i'); }
+static void bg_exit(void *ctx) { note((idle_fixture *)ctx, 'x'); }
+static void fg_init(void *ctx) { note((idle_fixture *)ctx, 'I'); }
+static void fg_cyclic(void *ctx) { note((idle_fixture *)ctx, 'C'); }
+static void fg_exit(void *ctx) { note((idle_fixture *)ctx, 'X'); }
 
 static void bg_cyclic(void *ctx)
 {
     idle_fixture *f = (idle_fixture *)ctx;
     f->loc_count = ++f->calls;
     note(f, 'c');
-}
-
-static void bg_exit(void *ctx)
-{
-    idle_fixture *f = (idle_fixture *)ctx;
-    note(f, 'x');
-}
-
-static void fg_init(void *ctx)
-{
-    idle_fixture *f = (idle_fixture *)ctx;
-    note(f, 'I');
-}
-
-static void fg_cyclic(void *ctx)
-{
-    idle_fixture *f = (idle_fixture *)ctx;
-    note(f, 'C');
-}
-
-static void fg_exit(void *ctx)
-{
-    idle_fixture *f = (idle_fixture *)ctx;
-    note(f, 'X');
 }
 
 static void idle_programs(idle_fixture *f, plc_io *out, plc_program *bg, plc_program *fg)
@@ -474,11 +459,7 @@ static void test_idle_class_runs_in_leftover_time_and_every_class_preempts_it(vo
     reg[1] = &fg;
     load(&cfg, TWO_CLASSES "[idle]\nsim_cost_us = 250\nprograms = Bg\n");
     build(&rt, &cfg, reg, 2);
-    memset(&log, 0, sizeof log);
-    rt.trace_hook = record;
-    rt.trace_ctx = &log;
-    assert_int_equal(plc_rt_start(&rt), PLC_RT_OK);
-    assert_int_equal(plc_rt_run_sim(&rt, 24), PLC_RT_OK);
+    run_traced(&rt, &log, 24);
     expect_event(&log, i++, PLC_RT_EV_RELEASE, 1, 0);
     expect_event(&log, i++, PLC_RT_EV_RELEASE, 2, 0);
     expect_event(&log, i++, PLC_RT_EV_START, 1, 0);
