@@ -580,7 +580,7 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
     ctx.Sv = std::max(rms(nom.v.head(R.fit_samples)), 1e-12);
     ctx.umax = std::max(nom.u.head(R.fit_samples).cwiseAbs().maxCoeff(), 1e-12);
     if (model.has_coupling) {
-        ctx.Sq = std::max(rms(nom.twist.head(R.fit_samples)), 1e-300);
+        ctx.Sq = rms(nom.twist.head(R.fit_samples));
         ctx.kq = model.coupling.stiffness;
     }
     fit_setup.eps_velocity = 0.01 * ctx.Sv;
@@ -744,7 +744,10 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
         } else {
             variants.push_back(effect_setup(e, ctx));
         }
-        if (model.has_coupling && coupling_capable(e)) variants.push_back(coupling_setup(e, ctx));
+        if (model.has_coupling && coupling_capable(e)) {
+            if (ctx.Sq > 0) variants.push_back(coupling_setup(e, ctx));
+            else R.skipped.push_back(effect_name(e) + " in the coupling: the nominal replay never deflects it");
+        }
         bool have = false;
         std::pair<FitReport, EffectSetup> best;
         for (const EffectSetup& es : variants) {

@@ -293,7 +293,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     const double ck = coupled ? cp->stiffness : 0.0;
     const double ctb = coupled ? cp->twist_s.dot(cp->torque_m) : 0.0;
     const Eigen::Index ns = coupled ? Eigen::Index(cp->states.size()) : 0;
-    Eigen::VectorXd zs(ns), zp(ns), gs(ns);
+    Eigen::VectorXd zs(ns), zp(ns), gs(ns), drive(ns);
     std::vector<double> cglw, chist;
     int chead = 0;
     double cglscale = 1.0;
@@ -467,8 +467,10 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
                     zs(i) = x[si];
                     zp(i) = xn[si];
                 }
-                gs = cp->Gamma_inv * (zp - cp->Phi * zs);
-                const Eigen::VectorXd drive = cp->Gamma_m * gs + cp->torque_m * Dfr;
+                zp.noalias() -= cp->Phi * zs;
+                gs.noalias() = cp->Gamma_inv * zp;
+                drive.noalias() = cp->Gamma_m * gs;
+                drive += cp->torque_m * Dfr;
                 for (int j = 0; j < cp->substeps; ++j) {
                     zp.noalias() = cp->Phi_m * zs;
                     zp += drive;
@@ -478,7 +480,8 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
                         const double q = 0.5 * (a0 + a1 + ctb * D);
                         D = -ck * std::min(std::max(q, -0.5 * cbl), 0.5 * cbl);
                     }
-                    zs = zp + cp->torque_m * D;
+                    zs = zp;
+                    zs += cp->torque_m * D;
                 }
                 for (Eigen::Index i = 0; i < ns; ++i) xn[size_t(cp->states[size_t(i)])] = zs(i);
             } else if (cfrac) {
