@@ -128,7 +128,7 @@ static int load_arm(struct hil_plant *pl)
     unsigned char *bytes;
     frac_ptable t;
     frac_real *tmp;
-    double v[2] = {0.0, 0.0}, *Ac;
+    double v[2] = {0.0, 0.0}, *Ac, *Bc;
     unsigned n, i, j;
     double half = 0.5 * pl->p.T, m;
     int st;
@@ -154,7 +154,9 @@ static int load_arm(struct hil_plant *pl)
     }
     /* frac_real scratch, also the double scratch of compose (sizeof(double) >= sizeof(frac_real)) */
     tmp = (frac_real *)malloc(sizeof(double) * HIL_PLANT_ARM_NMAX * HIL_PLANT_ARM_NMAX);
-    Ac = (double *)malloc(sizeof(double) * HIL_PLANT_ARM_NMAX * HIL_PLANT_ARM_NMAX);
+    /* Ac (n x n) followed by Bc (n) */
+    Ac = (double *)malloc(sizeof(double) * (HIL_PLANT_ARM_NMAX * HIL_PLANT_ARM_NMAX + HIL_PLANT_ARM_NMAX));
+    Bc = Ac ? Ac + HIL_PLANT_ARM_NMAX * HIL_PLANT_ARM_NMAX : NULL;
     st = !tmp || !Ac ? refuse(pl, "plant.table %s: out of memory", pl->p.table) : HIL_OK;
     if (st == HIL_OK && (st = table_get(pl, &t, "plant_dims", 1, 2, tmp, v)) == HIL_OK &&
         (v[0] != floor(v[0]) || v[1] != floor(v[1]) || v[1] < 2 || v[0] != 4.0 + 4.0 * v[1] ||
@@ -184,7 +186,7 @@ static int load_arm(struct hil_plant *pl)
     if (st == HIL_OK)
         st = table_get(pl, &t, "Ac", n, n, tmp, Ac);
     if (st == HIL_OK)
-        st = table_get(pl, &t, "Bc", n, 1, tmp, pl->ay);
+        st = table_get(pl, &t, "Bc", n, 1, tmp, Bc);
     if (st == HIL_OK) {
         pl->an = n;
         pl->aN = (unsigned)(n - 4) / 4;
@@ -194,8 +196,7 @@ static int load_arm(struct hil_plant *pl)
             for (i = 0; i < n; i++)
                 a += pl->C[3 * n + i] * Ac[i * n + j];
             pl->acc_row[j] = a;
-            pl->acc_b += pl->C[3 * n + j] * pl->ay[j];
-            pl->ay[j] = 0.0;
+            pl->acc_b += pl->C[3 * n + j] * Bc[j];
         }
         compose(pl, Ac, (double *)tmp);
     }
