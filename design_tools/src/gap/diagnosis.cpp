@@ -220,8 +220,9 @@ EffectSetup effect_setup(Effect e, const Context& c)
         // Starts: the largest peaks of the nominal residual spectrum and a
         // log grid of 6 per decade over the band (a dither or the reference's
         // tones can hold the largest peaks), screened by cost, the best 3
-        // refined. The gains start at 0, so each start first costs as much
-        // as the nominal: the screen takes them at 0.1 std(y)/rms(u).
+        // refined. With gains of 0 every start would cost what the nominal
+        // costs and the screen could not rank them: they start at
+        // 0.1 std(y)/rms(u).
         std::vector<double> fs = c.residual_peaks_hz;
         for (double f = flo; f <= fhi; f *= std::pow(10.0, 1.0 / 6.0)) fs.push_back(f);
         for (double f : fs) {

@@ -49,11 +49,6 @@ Effect effect_from_name(const std::string& name)
 
 bool coupling_capable(Effect e) { return e == Effect::backlash || e == Effect::fractional_damping; }
 
-std::string site_label(Site s, const NominalModel& m)
-{
-    return s == Site::coupling ? "coupling " + m.coupling.name : "force input";
-}
-
 bool needs_velocity(Effect e)
 {
     return e == Effect::coulomb_friction || e == Effect::viscous_friction || e == Effect::stribeck_friction ||

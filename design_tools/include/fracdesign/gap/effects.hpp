@@ -52,8 +52,6 @@ struct EffectInstance {
 
 // Effects that can act in a declared coupling (backlash, fractional_damping).
 bool coupling_capable(Effect e);
-// "force input" or "coupling <name>".
-std::string site_label(Site s, const NominalModel& m);
 
 // Parameter names of an effect; `outputs` are the compared outputs (per-channel parameters).
 std::vector<std::string> param_names(Effect e, const std::vector<std::string>& outputs);
