@@ -47,6 +47,9 @@ struct Command {
 
 std::map<std::string, Command>& command_registry();
 
+// Writes `bytes` to `path` (binary); std::runtime_error "cannot write '<path>'".
+void write_file(const std::string& path, const std::string& bytes);
+
 struct CommandRegistrar {
     explicit CommandRegistrar(Command c);
 };

@@ -1,6 +1,7 @@
 // args.cpp - option parsing and the subcommand registry of fracdesign.
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <sstream>
 
 #include "fracdesign/cli.hpp"
@@ -99,5 +100,12 @@ std::map<std::string, Command>& command_registry()
 }
 
 CommandRegistrar::CommandRegistrar(Command c) { command_registry()[c.name] = std::move(c); }
+
+void write_file(const std::string& path, const std::string& bytes)
+{
+    std::ofstream f(path, std::ios::binary);
+    if (!f || !f.write(bytes.data(), static_cast<std::streamsize>(bytes.size())))
+        throw std::runtime_error("cannot write '" + path + "'");
+}
 
 }  // namespace fracdesign

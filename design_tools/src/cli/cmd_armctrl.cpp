@@ -14,13 +14,6 @@
 namespace fracdesign {
 namespace {
 
-void write_file(const std::string& path, const std::string& text)
-{
-    std::ofstream f(path, std::ios::binary);
-    if (!f || !f.write(text.data(), static_cast<std::streamsize>(text.size())))
-        throw std::runtime_error("cannot write '" + path + "'");
-}
-
 int to_int(const Args& args, const char* key, long def, long lo, long hi, const std::string& what)
 {
     const long v = args.integer(key, def);
@@ -57,8 +50,7 @@ int run_armctrl(const std::vector<std::string>& argv)
     s.torque_limit = args.num("torque-limit", s.torque_limit);
     s.post = args.num("post", s.post);
     const std::string format = args.str("format", "bin"), out = args.str("out");
-    if (format != "json" && format != "c" && format != "var" && format != "bin")
-        throw UsageError("--format must be json, c, var or bin");
+    if (!tables::is_emit_format(format)) throw UsageError("--format must be json, c, var or bin");
     try {
         s.validate();
     } catch (const std::invalid_argument& e) {
@@ -80,18 +72,9 @@ int run_armctrl(const std::vector<std::string>& argv)
             throw UsageError("--real must be float64 or float32");
         }
     }
-    size_t bytes = 0;
-    if (format == "bin") {
-        const auto b = tables::to_binary(d.table);
-        write_file(out, std::string(b.begin(), b.end()));
-        bytes = b.size();
-    } else {
-        const std::string text = format == "json" ? tables::to_json(d.table).dump(2) + "\n"
-                                 : format == "c"  ? tables::to_c_header(d.table)
-                                                  : tables::to_var(d.table);
-        write_file(out, text);
-        bytes = text.size();
-    }
+    const std::string data = tables::emit(d.table, format);
+    write_file(out, data);
+    const size_t bytes = data.size();
     const auto& sp = d.spec;
     const long n_ff = static_cast<long>(d.ff[0].size());
     nlohmann::json j = {{"schema", "frac.armctrl"},

@@ -21,13 +21,6 @@ std::vector<std::uint8_t> read_bytes(const std::string& path)
     return std::vector<std::uint8_t>(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
 }
 
-void write_file(const std::string& path, const std::string& text)
-{
-    std::ofstream f(path, std::ios::binary);
-    if (!f || !f.write(text.data(), static_cast<std::streamsize>(text.size())))
-        throw std::runtime_error("cannot write '" + path + "'");
-}
-
 // Reports a refused table on stderr naming the field; exit status 1.
 int refuse(const std::string& what, const tables::TableError& e)
 {
@@ -39,8 +32,7 @@ int run_emit(const Args& args)
 {
     args.check_known({"json", "in", "format", "real", "out", "name"});
     const std::string in = args.str("in"), format = args.str("format"), out = args.str("out");
-    if (format != "json" && format != "c" && format != "var" && format != "bin")
-        throw UsageError("--format must be json, c, var or bin");
+    if (!tables::is_emit_format(format)) throw UsageError("--format must be json, c, var or bin");
     nlohmann::json doc;
     {
         std::ifstream f(in);
@@ -60,17 +52,9 @@ int run_emit(const Args& args)
     } catch (const tables::TableError& e) {
         return refuse("emit", e);
     }
-    size_t bytes = 0;
-    if (format == "bin") {
-        const auto b = tables::to_binary(t);
-        write_file(out, std::string(b.begin(), b.end()));
-        bytes = b.size();
-    } else {
-        const std::string text =
-            format == "json" ? tables::to_json(t).dump(2) + "\n" : format == "c" ? tables::to_c_header(t) : tables::to_var(t);
-        write_file(out, text);
-        bytes = text.size();
-    }
+    const std::string data = tables::emit(t, format);
+    write_file(out, data);
+    const size_t bytes = data.size();
     if (args.has("json")) {
         nlohmann::json j = {{"schema", "frac.table.emit"}, {"version", 1},     {"table", t.name},
                             {"format", format},          {"real", tables::to_string(t.real)},

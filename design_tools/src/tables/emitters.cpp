@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <sstream>
+#include <stdexcept>
 
 #include "frac/ptable.h"
 #include "fracdesign/tables/ptable.hpp"
@@ -203,6 +204,23 @@ std::string to_var(const ParamTable& t)
     }
     os << "END_VAR\n";
     return os.str();
+}
+
+bool is_emit_format(const std::string& format)
+{
+    return format == "json" || format == "c" || format == "var" || format == "bin";
+}
+
+std::string emit(const ParamTable& t, const std::string& format)
+{
+    if (format == "bin") {
+        const std::vector<std::uint8_t> b = to_binary(t);
+        return std::string(b.begin(), b.end());
+    }
+    if (format == "json") return to_json(t).dump(2) + "\n";
+    if (format == "c") return to_c_header(t);
+    if (format == "var") return to_var(t);
+    throw std::invalid_argument("unknown table format '" + format + "' (json, c, var or bin)");
 }
 
 }  // namespace fracdesign::tables

@@ -75,4 +75,10 @@ std::string to_c_header(const ParamTable& t);
 // B&R .var file: VAR ... END_VAR with one LREAL/REAL variable (ARRAY for matrices) per entry.
 std::string to_var(const ParamTable& t);
 
+// The emitted formats of `fracdesign table emit` and `fracdesign armctrl`:
+// "json" (to_json, 2-space indent), "c" (to_c_header), "var" (to_var) and
+// "bin" (to_binary's bytes). emit throws std::invalid_argument for another name.
+bool is_emit_format(const std::string& format);
+std::string emit(const ParamTable& t, const std::string& format);
+
 }  // namespace fracdesign::tables
