@@ -7,6 +7,7 @@
 #include <time.h>
 #include <unistd.h>
 #include "app_common.h"
+#include "hil/file.h"
 #ifdef HIL_HAVE_PLC
 #include "plc_law.h"
 #endif
@@ -153,20 +154,12 @@ void app_parse(int argc, char **argv, struct app_opts *o, const char *usage)
  * reads the table at _INIT); exits 2 when it cannot be read. */
 static unsigned char *slurp(const char *path, unsigned long *size)
 {
-    FILE *f = fopen(path, "rb");
-    unsigned char *b = NULL;
-    long n = -1;
-    if (f && fseek(f, 0, SEEK_END) == 0 && (n = ftell(f)) >= 0 && n <= (64L << 20) && fseek(f, 0, SEEK_SET) == 0 &&
-        (b = malloc(n > 0 ? (size_t)n : 1u)) && fread(b, 1, (size_t)n, f) == (size_t)n) {
-        fclose(f);
-        *size = (unsigned long)n;
-        return b;
+    unsigned char *b = hil_read_file(path, 64ul << 20, size);
+    if (!b) {
+        fprintf(stderr, "ctrl.table %s: cannot read the file\n", path);
+        exit(2);
     }
-    if (f)
-        fclose(f);
-    free(b);
-    fprintf(stderr, "ctrl.table %s: cannot read the file\n", path);
-    exit(2);
+    return b;
 }
 
 void app_open_bus(struct hil_transport *t, const char *spec)

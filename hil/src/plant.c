@@ -6,6 +6,7 @@
 #include <string.h>
 #include "frac/ptable.h"
 #include "hil/canopen.h"
+#include "hil/file.h"
 #include "hil/plant.h"
 
 void hil_plant_params_default(struct hil_plant_params *p)
@@ -39,29 +40,6 @@ static int refuse(struct hil_plant *pl, const char *fmt, ...)
     vsnprintf(pl->err, sizeof pl->err, fmt, ap);
     va_end(ap);
     return HIL_E_ARG;
-}
-
-/* Reads the whole file (at most HIL_PLANT_TABLE_MAX bytes) into a new buffer. */
-static unsigned char *read_file(const char *path, unsigned long *size)
-{
-    FILE *f = fopen(path, "rb");
-    unsigned char *b;
-    long n;
-    if (!f)
-        return NULL;
-    if (fseek(f, 0, SEEK_END) != 0 || (n = ftell(f)) < 0 || (unsigned long)n > HIL_PLANT_TABLE_MAX ||
-        fseek(f, 0, SEEK_SET) != 0 || !(b = (unsigned char *)malloc(n > 0 ? (size_t)n : 1u))) {
-        fclose(f);
-        return NULL;
-    }
-    if (fread(b, 1, (size_t)n, f) != (size_t)n) {
-        free(b);
-        fclose(f);
-        return NULL;
-    }
-    fclose(f);
-    *size = (unsigned long)n;
-    return b;
 }
 
 /* Entry `name` of exactly rows x cols into dst (double); the message names
@@ -134,7 +112,7 @@ static int load_arm(struct hil_plant *pl)
     int st;
     if (!pl->p.table[0])
         return refuse(pl, "plant = arm needs plant.table (fracdesign model arm --full --save-plant FILE)");
-    bytes = read_file(pl->p.table, &size);
+    bytes = hil_read_file(pl->p.table, HIL_PLANT_TABLE_MAX, &size);
     if (!bytes)
         return refuse(pl, "plant.table %s: cannot read the file (missing, unreadable or larger than %u bytes)",
                       pl->p.table, HIL_PLANT_TABLE_MAX);
