@@ -59,6 +59,7 @@ int hil_plc_law_init_exp_a(struct hil_plc_law *L, double T, double I_M, double I
                            size_t errlen)
 {
     frac_traj_params tp;
+    frac_traj traj;
     int i, ch;
     if (!L || fabs(T - 1.2e-3) > 1e-12 || !(I_M > 0.0) || !(I_L > 0.0) || !(c_s > 0.0) || !isfinite(I_M) ||
         !isfinite(I_L) || !isfinite(c_s))
@@ -66,13 +67,13 @@ int hil_plc_law_init_exp_a(struct hil_plc_law *L, double T, double I_M, double I
     memset(L, 0, sizeof *L);
     /* Table 8.5 point-to-point move */
     armctrl_table_8_5_move(&tp);
-    if (frac_traj_init(&L->traj, &tp) != FRAC_OK)
+    if (frac_traj_init(&traj, &tp) != FRAC_OK)
         return HIL_E_ARG;
     /* rbFFC (4.14)-(4.17): link at the trajectory, motor ahead by the spring
      * twist I_L q'' / c_s, torque I_M theta_M'' + c_s (theta_M - q). */
     for (i = 0; i < HIL_PLC_FF_SAMPLES; i++) {
         frac_real d[5], th, ddth;
-        frac_traj_eval(&L->traj, (frac_real)(i * T), d);
+        frac_traj_eval(&traj, (frac_real)(i * T), d);
         th = (frac_real)(I_L / c_s) * d[2] + d[0];
         ddth = (frac_real)(I_L / c_s) * d[4] + d[2];
         L->ff[ARMCTRL_FF_THETA][i] = th;

@@ -47,7 +47,6 @@
 #include "ArmCtrl.h"
 #include "ImuRead.h"
 #include "frac/lut.h"
-#include "frac/traj.h"
 #include "hil/ctrl.h"
 #include "plc_rt.h"
 
@@ -63,7 +62,6 @@ struct hil_plc_law {
     armctrl_outputs ctrl_img;
     imuread_inputs can_img;
     imuread_outputs imu_img;
-    frac_traj traj;
     frac_real ff[ARMCTRL_FF_N][HIL_PLC_FF_SAMPLES];
     armctrl_table_storage store;   /* table variant: the values ArmCtrl's _INIT copies */
     const armctrl_params *P;       /* the parameters in use (par or store.par) */
