@@ -104,7 +104,7 @@ CommandRegistrar::CommandRegistrar(Command c) { command_registry()[c.name] = std
 void write_file(const std::string& path, const std::string& bytes)
 {
     std::ofstream f(path, std::ios::binary);
-    if (!f || !f.write(bytes.data(), static_cast<std::streamsize>(bytes.size())))
+    if (!f || !f.write(bytes.data(), static_cast<std::streamsize>(bytes.size())) || !f.flush())
         throw std::runtime_error("cannot write '" + path + "'");
 }
 

@@ -1,8 +1,6 @@
 // cmd_armctrl.cpp - `fracdesign armctrl`: the parameter table of the PLC program ArmCtrl for
 // seed 004 Exp. A-D (design/armctrl.hpp), written with the emitters of `fracdesign table`.
-#include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -20,15 +18,6 @@ int to_int(const Args& args, const char* key, long def, long lo, long hi, const 
     if (v < lo || v > hi)
         throw UsageError(std::string("--") + key + " " + what + " (got " + std::to_string(v) + ")");
     return static_cast<int>(v);
-}
-
-nlohmann::json loop_json(const design::LoopCheck& c)
-{
-    auto fin = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
-    return {{"plant_states", c.plant_states}, {"plant_di", c.plant_di}, {"plant_do", c.plant_do},
-            {"spectral_radius", c.spectral_radius}, {"critical_w", c.critical_w},
-            {"stable", c.spectral_radius < 1.0}, {"gain_margin_db", fin(c.gain_margin_db)},
-            {"phase_margin_deg", fin(c.phase_margin_deg)}, {"modulus_margin", fin(c.modulus_margin)}};
 }
 
 int run_armctrl(const std::vector<std::string>& argv)
@@ -109,8 +98,8 @@ int run_armctrl(const std::vector<std::string>& argv)
                     {"n_bar", d.K.cols()},
                     {"controller_residual", d.lqg->ctrl.residual},
                     {"observer_residual", d.lqg->obs.residual},
-                    {"check_reduced", loop_json(d.check_reduced)},
-                    {"check_unreduced", loop_json(d.check_unreduced)}};
+                    {"check_reduced", design::to_json(d.check_reduced)},
+                    {"check_unreduced", design::to_json(d.check_unreduced)}};
     }
     if (args.has("json")) {
         std::cout << j.dump(2) << "\n";

@@ -1,7 +1,5 @@
 // cmd_lqg.cpp - `fracdesign lqg`: seed 004 state-difference LQG with delays (Exp. C / D).
-#include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -51,20 +49,11 @@ int run_lqg(const std::vector<std::string>& argv)
     const auto cf = design::check_closed_loop(d, full, plant_di, plant_do);
     nlohmann::json j = design::to_json(d);
     j["beam_damping"] = {{"r_t", beam.r_t}, {"r_r", beam.r_r}};
-    auto loop = [](const design::LoopCheck& c) {
-        auto fin = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
-        return nlohmann::json{{"plant_states", c.plant_states}, {"plant_di", c.plant_di}, {"plant_do", c.plant_do},
-                              {"spectral_radius", c.spectral_radius}, {"critical_w", c.critical_w},
-                              {"stable", c.spectral_radius < 1.0}, {"gain_margin_db", fin(c.gain_margin_db)},
-                              {"phase_margin_deg", fin(c.phase_margin_deg)}, {"modulus_margin", fin(c.modulus_margin)}};
-    };
-    j["check_nominal"] = loop(cn);
-    j["check_reduced"] = loop(cr);
-    j["check_unreduced"] = loop(cf);
+    j["check_nominal"] = design::to_json(cn);
+    j["check_reduced"] = design::to_json(cr);
+    j["check_unreduced"] = design::to_json(cf);
     if (args.has("out")) {
-        std::ofstream f(args.str("out"));
-        if (!f) throw std::runtime_error("cannot write '" + args.str("out") + "'");
-        f << j.dump(2) << "\n";
+        write_file(args.str("out"), j.dump(2) + "\n");
     }
     if (args.has("json")) {
         std::cout << j.dump(2) << "\n";

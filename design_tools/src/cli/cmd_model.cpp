@@ -3,7 +3,6 @@
 // poles/zeros or frequency responses, and with --save FILE writes it in the JSON model format.
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -257,10 +256,7 @@ int run_model(const std::vector<std::string>& argv)
         const ArmModelSpec* arm = std::get_if<ArmModelSpec>(&m);
         if (!arm) throw UsageError("--save-plant: only for the arm model");
         const tables::ParamTable t = arm_plant_table(*arm, a.num("h", 1.2e-3 / 8));
-        const std::vector<std::uint8_t> b = tables::to_binary(t);
-        std::ofstream f(a.str("save-plant"), std::ios::binary);
-        if (!f.write(reinterpret_cast<const char*>(b.data()), static_cast<std::streamsize>(b.size())) || !f.flush())
-            throw std::runtime_error("--save-plant: cannot write '" + a.str("save-plant") + "'");
+        write_file(a.str("save-plant"), tables::emit(t, "bin"));
     } else if (a.has("h")) {
         throw UsageError("option --h: only with --save-plant");
     }

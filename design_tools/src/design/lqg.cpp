@@ -254,6 +254,15 @@ LoopCheck check_closed_loop(const LqgDesign& d, const StateSpace& plant, int pla
     return r;
 }
 
+nlohmann::json to_json(const LoopCheck& c)
+{
+    auto fin = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+    return {{"plant_states", c.plant_states}, {"plant_di", c.plant_di}, {"plant_do", c.plant_do},
+            {"spectral_radius", c.spectral_radius}, {"critical_w", c.critical_w},
+            {"stable", c.spectral_radius < 1.0}, {"gain_margin_db", fin(c.gain_margin_db)},
+            {"phase_margin_deg", fin(c.phase_margin_deg)}, {"modulus_margin", fin(c.modulus_margin)}};
+}
+
 nlohmann::json to_json(const LqgDesign& d)
 {
     const LqgParams& p = d.params;

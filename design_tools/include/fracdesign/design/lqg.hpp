@@ -105,5 +105,7 @@ struct LoopCheck {
 LoopCheck check_closed_loop(const LqgDesign& d, const StateSpace& plant, int plant_di = -1, int plant_do = -1);
 
 nlohmann::json to_json(const LqgDesign& d);
+// A loop check with "stable" (spectral radius < 1); non-finite margins as null.
+nlohmann::json to_json(const LoopCheck& c);
 
 }  // namespace fracdesign::design
