@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fracdesign/cli.hpp"
+#include "fracdesign/design/armctrl.hpp"
 #include "fracdesign/design/ibffc.hpp"
 #include "fracdesign/design/lqg.hpp"
 #include "fracdesign/design/trajectory.hpp"
@@ -84,10 +85,9 @@ int run_traj(const std::vector<std::string>& argv)
     const double t_end = args.num("t-end", p->t_end() + 0.5);
     // Rigid-body feedforward (4.14)-(4.17): drive of Table 8.2 (I_M = n^2 I_m, notes 004a) and a
     // rigid link I_l = I_h + I_b; the thesis gives no I_b, default rho((L + r_h)^3 - r_h^3)/3 + I_h
-    // of the Table 8.3 beam (notes 004b section 3).
+    // of the Table 8.3 beam (notes 004b section 3; design::wang_rigid_link_inertia).
     const DriveParams dr = wang_drive();
-    const TimoshenkoParams b = wang_steel_beam();
-    const double Il = args.num("Il", b.rho * (std::pow(b.L + dr.r_h, 3) - std::pow(dr.r_h, 3)) / 3.0 + dr.I_h);
+    const double Il = args.num("Il", design::wang_rigid_link_inertia());
     if (!(Il > 0.0)) throw UsageError("--Il must be > 0");
     const long n = static_cast<long>(std::floor(t_end / dt)) + 1;
     std::vector<std::array<double, 5>> q(n);
