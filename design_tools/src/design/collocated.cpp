@@ -4,10 +4,8 @@
 
 #include <algorithm>
 #include <vector>
-#include <numeric>
 #include <array>
 #include <cmath>
-#include <random>
 #include <limits>
 #include <stdexcept>
 
