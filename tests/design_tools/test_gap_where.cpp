@@ -20,14 +20,15 @@ namespace {
 const double kTs = 0.01;
 const Eigen::Index kN = 4000;
 
-nlohmann::json model_doc()
+// A unit mass x'' = u + a21 x + a22 x' (outputs x and v), open loop.
+nlohmann::json second_order_doc(const char* name, double a21, double a22)
 {
     return {{"schema", "frac.model"},
             {"version", 1},
             {"kind", "statespace"},
-            {"name", "mass_damper"},
+            {"name", name},
             {"time", "continuous"},
-            {"A", {{0.0, 1.0}, {0.0, -1.0}}},
+            {"A", {{0.0, 1.0}, {a21, a22}}},
             {"B", {{0.0}, {1.0}}},
             {"C", {{1.0, 0.0}, {0.0, 1.0}}},
             {"D", {{0.0}, {0.0}}},
@@ -35,6 +36,8 @@ nlohmann::json model_doc()
             {"outputs", {"x", "v"}},
             {"gap", {{"velocity", "v"}, {"force_input", "u"}}}};
 }
+
+nlohmann::json model_doc() { return second_order_doc("mass_damper", 0.0, -1.0); }
 
 double input(double t)
 {
@@ -102,18 +105,7 @@ namespace {
 nlohmann::json msd_doc(double f_hz, double zeta)
 {
     const double w = 2 * M_PI * f_hz;
-    return {{"schema", "frac.model"},
-            {"version", 1},
-            {"kind", "statespace"},
-            {"name", "msd"},
-            {"time", "continuous"},
-            {"A", {{0.0, 1.0}, {-w * w, -2 * zeta * w}}},
-            {"B", {{0.0}, {1.0}}},
-            {"C", {{1.0, 0.0}, {0.0, 1.0}}},
-            {"D", {{0.0}, {0.0}}},
-            {"inputs", {"u"}},
-            {"outputs", {"x", "v"}},
-            {"gap", {{"velocity", "v"}, {"force_input", "u"}}}};
+    return second_order_doc("msd", -w * w, -2 * zeta * w);
 }
 
 // The nominal (2 Hz, zeta 0.05) checked against a record of the "true" plant,
