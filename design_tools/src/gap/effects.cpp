@@ -448,13 +448,15 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
             xn[size_t(i)] = acc;
         }
         if (coupled) {
-            double q0 = 0, qp = 0;
-            for (int j = 0; j < nx; ++j) {
-                q0 += m.coupling.twist(j) * x[size_t(j)];
-                qp += m.coupling.twist(j) * xn[size_t(j)];
-            }
+            double q0 = 0;
+            for (int j = 0; j < nx; ++j) q0 += cp->twist(j) * x[size_t(j)];
             tr.twist(k) = q0;
-            const double Dfr = cfrac ? cfc * cglscale * (0.5 * (q0 + qp) + chist_sum()) : 0.0;
+            double Dfr = 0.0;
+            if (cfrac) {
+                double qp = 0;  // the nominal q(k+1)
+                for (int j = 0; j < nx; ++j) qp += cp->twist(j) * xn[size_t(j)];
+                Dfr = cfc * cglscale * (0.5 * (q0 + qp) + chist_sum());
+            }
             if (cbl >= 0) {
                 // Sub-steps: z+ = Phi_m z + Gamma_m g + torque_m (Dfr + D), g the sample's forcing.
                 for (Eigen::Index i = 0; i < ns; ++i) {
