@@ -1,7 +1,8 @@
 /*
  * bench_plc: workloads for bench_plc.sh (callgrind instruction counts).
  *   bench_plc armctrl A|B|C|D N  : N Cyclic #1 cycles of ArmCtrl (armctrl_cyclic)
- *   bench_plc block NAME N       : N calls of one block (lqg, lut1d, friction, trajlut, fracop);
+ *   bench_plc block NAME N       : N calls of one block (lqg, lut1d, lut2d, friction, trajlut,
+ *                                  fracop, fracop_cfe, fracop_gl, fopid, fracdamp);
  *                                  the script compares the block's inclusive count
  *                                  with that of the libfrac call inside it.
  * Sizes are those of Exp. D (Table 8.8): n = 16, d_i = 4, d_o = (0, 0, 3),
@@ -164,18 +165,96 @@ static int run_block(const char *name, long n)
             TrajLUT(&b);
         }
         printf("Y0 %g status %u\n", (double)b.Y[0], (unsigned)b.StatusID);
-    } else if (!strcmp(name, "fracop")) {
+    } else if (!strncmp(name, "fracop", 6)) {
+        /* s^0.5 in each realization: Oustaloup N = 4 over 0.1..1000 rad/s,
+         * CFE (Tustin) order 4, GL with the longest memory the block's
+         * storage holds (341 terms) */
         static struct FracOp b;
-        b.Parameters.Method = fracFO_OUSTALOUP;
         b.Parameters.Order = 0.5;
         b.Parameters.Ts = 1.2e-3;
-        b.Parameters.Wb = 0.1;
-        b.Parameters.Wh = 1000.0;
-        b.Parameters.N = 4;
+        if (!strcmp(name, "fracop")) {
+            b.Parameters.Method = fracFO_OUSTALOUP;
+            b.Parameters.Wb = 0.1;
+            b.Parameters.Wh = 1000.0;
+            b.Parameters.N = 4;
+        } else if (!strcmp(name, "fracop_cfe")) {
+            b.Parameters.Method = fracFO_CFE_TUSTIN;
+            b.Parameters.N = 4;
+        } else if (!strcmp(name, "fracop_gl")) {
+            b.Parameters.Method = fracFO_GL;
+            b.Parameters.Memory = 341;
+        } else {
+            return 2;
+        }
         b.Enable = 1;
         for (k = 0; k < n; k++) {
             b.X = 0.001f * (REAL)(k % 100);
             FracOp(&b);
+        }
+        printf("Y %g status %u\n", (double)b.Y, (unsigned)b.StatusID);
+    } else if (!strcmp(name, "fopid")) {
+        /* the seed 001 FO-PI (52) of the FoLoop example: Kp 0.1219,
+         * Ki 0.1255, lambda 0.88, s^0.12 by Oustaloup N = 8 over 1e-4..1e3
+         * rad/s, T = 2 ms (tests/plc_blocks/test_foloop.c) */
+        static struct FOPID b;
+        b.Parameters.Kp = 0.1219f;
+        b.Parameters.Ki = 0.1255f;
+        b.Parameters.Lambda = 0.88f;
+        b.Parameters.B = 1.0f;
+        b.Parameters.C = 1.0f;
+        b.Parameters.Y_min = -10.0f;
+        b.Parameters.Y_max = 10.0f;
+        b.Parameters.Ts = 2e-3f;
+        b.Parameters.Method = fracFO_OUSTALOUP;
+        b.Parameters.Wb = 1e-4f;
+        b.Parameters.Wh = 1e3f;
+        b.Parameters.N = 8;
+        b.Enable = 1;
+        for (k = 0; k < n; k++) {
+            b.W = 1.0f;
+            b.X = 0.001f * (REAL)(k % 100);
+            FOPID(&b);
+        }
+        printf("Y %g status %u\n", (double)b.Y, (unsigned)b.StatusID);
+    } else if (!strcmp(name, "fracdamp")) {
+        /* the seed 002 law and prefilter of the DampLoop example, (48) and
+         * (52): Kc 5.31, alpha 0.8, m 2, n1 0.0142, prefilter 0.116 / 0.55 /
+         * 0.011, T = 0.4 ms, Oustaloup N = 6 over 0.01..3000 rad/s
+         * (tests/plc_blocks/test_damploop.c) */
+        static struct FracDamp b;
+        b.Parameters.Kc = 5.31f;
+        b.Parameters.Alpha = 0.8f;
+        b.Parameters.M = 2;
+        b.Parameters.N1 = 0.0142f;
+        b.Parameters.Fa = 0.116f;
+        b.Parameters.Fbeta = 0.55f;
+        b.Parameters.Fb = 0.011f;
+        b.Parameters.Ts = 4e-4f;
+        b.Parameters.Method = fracFO_OUSTALOUP;
+        b.Parameters.Wb = 0.01f;
+        b.Parameters.Wh = 3000.0f;
+        b.Parameters.N = 6;
+        b.Enable = 1;
+        for (k = 0; k < n; k++) {
+            b.W = 0.1f;
+            b.X = 0.01f * (REAL)(k % 100);
+            FracDamp(&b);
+        }
+        printf("Y %g status %u\n", (double)b.Y, (unsigned)b.StatusID);
+    } else if (!strcmp(name, "lut2d")) {
+        /* a 50 x 50 uniform grid over the feedforward data, read along a
+         * diagonal path */
+        static struct LUT2D b;
+        b.Parameters.Dx1 = 0.02;
+        b.Parameters.N1 = 50;
+        b.Parameters.Dx2 = 0.02;
+        b.Parameters.N2 = 50;
+        b.Parameters.pZ = ff[0];
+        b.Enable = 1;
+        for (k = 0; k < n; k++) {
+            b.X1 = 0.0011f * (REAL)(k % 800);
+            b.X2 = 0.0007f * (REAL)(k % 900);
+            LUT2D(&b);
         }
         printf("Y %g status %u\n", (double)b.Y, (unsigned)b.StatusID);
     } else {
@@ -188,7 +267,7 @@ int main(int argc, char **argv)
 {
     long n;
     if (argc != 4 || (n = atol(argv[3])) <= 0) {
-        fprintf(stderr, "usage: bench_plc armctrl A|B|C|D N | bench_plc block lqg|lut1d|friction|trajlut|fracop N\n");
+        fprintf(stderr, "usage: bench_plc armctrl A|B|C|D N | bench_plc block lqg|lut1d|lut2d|friction|trajlut|fracop|fracop_cfe|fracop_gl|fopid|fracdamp N\n");
         return 2;
     }
     fill();
