@@ -1,6 +1,7 @@
 // collocated.cpp - seed 002 fractional collocated damping design (Theorem 5,
 // design procedure of Section 4, robot of Section 5).
 #include "fracdesign/design/collocated.hpp"
+#include "fracdesign/golden.hpp"
 
 #include <algorithm>
 #include <vector>
@@ -239,19 +240,9 @@ PrefilterResult optimise_prefilter(const std::function<cplx(double)>& L, const C
             if (v < fb) fb = v, ib = i;
         }
         double a = x0 + std::max(0, ib - 1) * h, b = x0 + std::min(n_scan - 1, ib + 1) * h;
-        const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-        double x1 = b - g * (b - a), x2 = a + g * (b - a);
-        double f1 = ripple(x1, lfd, beta, W), f2 = ripple(x2, lfd, beta, W);
-        while (b - a > 1e-4) {
-            if (f1 < f2) {
-                b = x2, x2 = x1, f2 = f1, x1 = b - g * (b - a), f1 = ripple(x1, lfd, beta, W);
-            } else {
-                a = x1, x1 = x2, f1 = f2, x2 = a + g * (b - a), f2 = ripple(x2, lfd, beta, W);
-            }
-        }
-        const double xm = f1 < f2 ? x1 : x2, fm = std::min(f1, f2);
-        *lfn_best = fm <= fb ? xm : x0 + ib * h;
-        return std::min(fm, fb);
+        const GoldenResult m = golden_section_min([&](double x) { return ripple(x, lfd, beta, W); }, a, b, 1e-4, 1000);
+        *lfn_best = m.fx <= fb ? m.x : x0 + ib * h;
+        return std::min(m.fx, fb);
     };
     // B(f_d, beta): bisection in log W on [1, 20] rad/s (the -3 dB bandwidth is about 10) to 2e-4
     // relative; 0 if not even W = 1 is reachable. Also returns the f_n that reaches it.

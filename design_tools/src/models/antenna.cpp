@@ -1,5 +1,6 @@
 // antenna.cpp - seed 000 antenna: nominal parameter sets, undamped poles/zeros, resonance peaks.
 #include "fracdesign/models/antenna.hpp"
+#include "fracdesign/golden.hpp"
 
 #include <cmath>
 #include <functional>
@@ -84,25 +85,9 @@ std::pair<double, double> antenna_peak(const AntennaLink& link, const AntennaDam
         }
     }
     // golden-section refinement on the bracket around the best grid point
-    double a = w_lo + (w_hi - w_lo) * std::max(0, best - 1) / n, b = w_lo + (w_hi - w_lo) * std::min(n, best + 1) / n;
-    const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-    double c = b - g * (b - a), e = a + g * (b - a), fc = mag(c), fe = mag(e);
-    for (int it = 0; it < 200 && b - a > 1e-12 * b; ++it) {
-        if (fc > fe) {
-            b = e;
-            e = c;
-            fe = fc;
-            c = b - g * (b - a);
-            fc = mag(c);
-        } else {
-            a = c;
-            c = e;
-            fc = fe;
-            e = a + g * (b - a);
-            fe = mag(e);
-        }
-    }
-    const double wp = 0.5 * (a + b);
+    const double a = w_lo + (w_hi - w_lo) * std::max(0, best - 1) / n, b = w_lo + (w_hi - w_lo) * std::min(n, best + 1) / n;
+    const GoldenResult m = golden_section_min([&](double w) { return -mag(w); }, a, b, 1e-12 * b, 200);
+    const double wp = 0.5 * (m.a + m.b);
     return {wp, 20.0 * std::log10(mag(wp))};
 }
 
