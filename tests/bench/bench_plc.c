@@ -11,6 +11,7 @@
  * instructions: frac_lqg_step's cost does not depend on the values).
  */
 #include "ArmCtrl.h"
+#include "fracctrl_seed_params.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -193,22 +194,9 @@ static int run_block(const char *name, long n)
         }
         printf("Y %g status %u\n", (double)b.Y, (unsigned)b.StatusID);
     } else if (!strcmp(name, "fopid")) {
-        /* the seed 001 FO-PI (52) of the FoLoop example: Kp 0.1219,
-         * Ki 0.1255, lambda 0.88, s^0.12 by Oustaloup N = 8 over 1e-4..1e3
-         * rad/s, T = 2 ms (tests/plc_blocks/test_foloop.c) */
+        /* the seed 001 FO-PI (52) of the FoLoop example */
         static struct FOPID b;
-        b.Parameters.Kp = 0.1219f;
-        b.Parameters.Ki = 0.1255f;
-        b.Parameters.Lambda = 0.88f;
-        b.Parameters.B = 1.0f;
-        b.Parameters.C = 1.0f;
-        b.Parameters.Y_min = -10.0f;
-        b.Parameters.Y_max = 10.0f;
-        b.Parameters.Ts = 2e-3f;
-        b.Parameters.Method = fracFO_OUSTALOUP;
-        b.Parameters.Wb = 1e-4f;
-        b.Parameters.Wh = 1e3f;
-        b.Parameters.N = 8;
+        seed001_fopi52(&b.Parameters);
         b.Enable = 1;
         for (k = 0; k < n; k++) {
             b.W = 1.0f;
@@ -217,23 +205,9 @@ static int run_block(const char *name, long n)
         }
         printf("Y %g status %u\n", (double)b.Y, (unsigned)b.StatusID);
     } else if (!strcmp(name, "fracdamp")) {
-        /* the seed 002 law and prefilter of the DampLoop example, (48) and
-         * (52): Kc 5.31, alpha 0.8, m 2, n1 0.0142, prefilter 0.116 / 0.55 /
-         * 0.011, T = 0.4 ms, Oustaloup N = 6 over 0.01..3000 rad/s
-         * (tests/plc_blocks/test_damploop.c) */
+        /* the seed 002 law and prefilter of the DampLoop example */
         static struct FracDamp b;
-        b.Parameters.Kc = 5.31f;
-        b.Parameters.Alpha = 0.8f;
-        b.Parameters.M = 2;
-        b.Parameters.N1 = 0.0142f;
-        b.Parameters.Fa = 0.116f;
-        b.Parameters.Fbeta = 0.55f;
-        b.Parameters.Fb = 0.011f;
-        b.Parameters.Ts = 4e-4f;
-        b.Parameters.Method = fracFO_OUSTALOUP;
-        b.Parameters.Wb = 0.01f;
-        b.Parameters.Wh = 3000.0f;
-        b.Parameters.N = 6;
+        seed002_law(&b.Parameters);
         b.Enable = 1;
         for (k = 0; k < n; k++) {
             b.W = 0.1f;

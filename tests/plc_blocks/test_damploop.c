@@ -6,6 +6,7 @@
  * range. */
 #include "frac_test.h"
 #include "DampLoop.h"
+#include "fracctrl_seed_params.h"
 #include "plc_rt.h"
 #include "ptable_writer.h"
 
@@ -115,23 +116,6 @@ static void rig2_tick(void *ctx, uint64_t t_ns)
         if (tip > r->tail_max) r->tail_max = tip;
         if (tip < r->tail_min) r->tail_min = tip;
     }
-}
-
-static void seed002_law(FracDampParType *p)
-{
-    memset(p, 0, sizeof *p);
-    p->Kc = 5.31f;   /* (48) */
-    p->Alpha = 0.8f;
-    p->M = 2;
-    p->N1 = 0.0142f;
-    p->Fa = 0.116f;  /* (52) */
-    p->Fbeta = 0.55f;
-    p->Fb = 0.011f;
-    p->Ts = 0.0004f;
-    p->Method = fracFO_OUSTALOUP;
-    p->Wb = 0.01f;
-    p->Wh = 3000.0f;
-    p->N = 6;
 }
 
 static unsigned char table_buf[1024];

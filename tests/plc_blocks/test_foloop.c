@@ -4,6 +4,7 @@
  * track a unit step as the notes' reference simulations (notes 001 8.3). */
 #include "frac_test.h"
 #include "FoLoop.h"
+#include "fracctrl_seed_params.h"
 #include "plc_rt.h"
 #include "frac/foprocess.h"
 
@@ -115,15 +116,7 @@ static void run_loop(rig *r, const foloop_params *par)
 static void base_params(foloop_params *par)
 {
     memset(par, 0, sizeof *par);
-    par->Pid.B = 1.0f;
-    par->Pid.C = 1.0f;
-    par->Pid.Y_min = -10.0f;
-    par->Pid.Y_max = 10.0f;
-    par->Pid.Ts = (REAL)TS;
-    par->Pid.Method = fracFO_OUSTALOUP;
-    par->Pid.Wb = 1e-4f;
-    par->Pid.Wh = 1e3f;
-    par->Pid.N = 8;
+    seed001_realization(&par->Pid);
 }
 
 static void test_fo_loop_runs_the_fracdesign_tables(void **state)
@@ -173,22 +166,7 @@ static void test_fo_pi_52_settles_a_step_without_error(void **state)
     (void)state;
     rig_init(&r);
     memset(&par, 0, sizeof par);
-    par.Pid.Kp = 0.1219f;
-    par.Pid.Ki = 0.1255f;
-    par.Pid.Lambda = 0.88f;
-    par.Pid.B = 1.0f;
-    par.Pid.C = 1.0f;
-    par.Pid.Y_min = -10.0f;
-    par.Pid.Y_max = 10.0f;
-    par.Pid.Ts = (REAL)TS;
-    /* s^-0.88 = s^-1 s^0.12 (frac/fopid.h) with s^0.12 by Oustaloup over 7
-     * decades: the slow fractional creep of the full-memory reference needs
-     * the low frequencies that a GL short memory (here at most 512 terms,
-     * 1 s) would cut off */
-    par.Pid.Method = fracFO_OUSTALOUP;
-    par.Pid.Wb = 1e-4f;
-    par.Pid.Wh = 1e3f;
-    par.Pid.N = 8;
+    seed001_fopi52(&par.Pid); /* Oustaloup over 7 decades (fracctrl_seed_params.h) */
     run_loop(&r, &par);
     print_message("FO-PI (52): y(40 s after the step) = %.4f, max |y| = %.3f\n", r.y_at_41, r.max_abs_y);
     /* notes 001 8.3 (GL full memory, their step 0.5): y(40 s) = 0.4544 / 0.5

@@ -2,25 +2,18 @@
  * seed 002 law, Enable/Update/Reset edges, NaN input, bad parameters. */
 #include "frac_test.h"
 #include "FracCtrl.h"
+#include "fracctrl_seed_params.h"
 #include "frac/fodamp.h"
 
 #include <string.h>
 
 /* seed 002 (51)/(52): C = 5.31 (1 + 0.0142 s)/s^1.2, F = (1 + 0.116 s^0.55)/(1 + 0.011 s), Ts = 0.4 ms */
+/* The seed 002 law with realization m (GL memory 150, Oustaloup/CFE N = 4 up to 2000 rad/s). */
 static void seed002(FracDampParType *p, FracFoMethodEnum m)
 {
-    memset(p, 0, sizeof *p);
-    p->Kc = 5.31f;
-    p->Alpha = 0.8f;
-    p->M = 2;
-    p->N1 = 0.0142f;
-    p->Fa = 0.116f;
-    p->Fbeta = 0.55f;
-    p->Fb = 0.011f;
-    p->Ts = 0.0004f;
+    seed002_law(p);
     p->Method = m;
     p->Memory = 150;
-    p->Wb = 0.01f;
     p->Wh = 2000.0f;
     p->N = 4;
 }
