@@ -300,6 +300,12 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
         chist.assign(cglw.size(), 0.0);
     }
     // The fractional term's sum over the history (the newest entry excluded).
+    // Deflection twist . x of a plant state.
+    auto twist_of = [&](const std::vector<double>& xs) {
+        double q = 0;
+        for (int j = 0; j < nx; ++j) q += cp->twist(j) * xs[size_t(j)];
+        return q;
+    };
     auto chist_sum = [&]() {
         double acc = 0;
         const int L = int(chist.size());
@@ -448,13 +454,11 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
             xn[size_t(i)] = acc;
         }
         if (coupled) {
-            double q0 = 0;
-            for (int j = 0; j < nx; ++j) q0 += cp->twist(j) * x[size_t(j)];
+            const double q0 = twist_of(x);
             tr.twist(k) = q0;
             double Dfr = 0.0;
             if (cfrac) {
-                double qp = 0;  // the nominal q(k+1)
-                for (int j = 0; j < nx; ++j) qp += cp->twist(j) * xn[size_t(j)];
+                const double qp = twist_of(xn);  // the nominal q(k+1)
                 Dfr = cfc * cglscale * (0.5 * (q0 + qp) + chist_sum());
             }
             if (cbl >= 0) {
@@ -485,9 +489,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
                 for (int i = 0; i < nx; ++i) xn[size_t(i)] += cp->torque(i) * Dfr;
             }
             if (cfrac) {
-                double q1 = 0;
-                for (int j = 0; j < nx; ++j) q1 += cp->twist(j) * xn[size_t(j)];
-                chist[size_t(chead)] = 0.5 * (q0 + q1);
+                chist[size_t(chead)] = 0.5 * (q0 + twist_of(xn));
                 chead = (chead + 1) % int(chist.size());
             }
         }

@@ -103,16 +103,6 @@ void read_ss(const json& j, Eigen::Index m, Eigen::Index p, double Ts, const std
     }
 }
 
-// int_0^tau e^{Ac s} ds
-Eigen::MatrixXd gamma_of(const Eigen::MatrixXd& Ac, double tau)
-{
-    const Eigen::Index n = Ac.rows();
-    Eigen::MatrixXd Z = Eigen::MatrixXd::Zero(2 * n, 2 * n);
-    Z.topLeftCorner(n, n) = Ac * tau;
-    Z.topRightCorner(n, n) = Eigen::MatrixXd::Identity(n, n) * tau;
-    return Eigen::MatrixXd(Z.exp()).topRightCorner(n, n);
-}
-
 // The sub-step matrices of gap.coupling (nominal.hpp, Coupling).
 void setup_coupling_substeps(Coupling& c, const Eigen::MatrixXd& A, double Ts, const json& cp, const std::string& w)
 {
@@ -147,17 +137,22 @@ void setup_coupling_substeps(Coupling& c, const Eigen::MatrixXd& A, double Ts, c
         ts(i) = c.torque(c.states[size_t(i)]);
         for (Eigen::Index j = 0; j < ns; ++j) c.Phi(i, j) = A(c.states[size_t(i)], c.states[size_t(j)]);
     }
+    // The generator Ac = log(Phi)/Ts. zoh(Ac, I, tau) gives e^{Ac tau} and
+    // int_0^tau e^{Ac s} ds together: at Ts they must give Phi back (else Phi
+    // has no real logarithm) and the hold integral to invert; at Ts/m the
+    // sub-step.
     const Eigen::MatrixXd Ac = Eigen::MatrixXd(c.Phi.log()) / Ts;
-    const double err = Ac.allFinite() ? (Eigen::MatrixXd((Ac * Ts).exp()) - c.Phi).cwiseAbs().maxCoeff() : HUGE_VAL;
+    const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(ns, ns);
+    Eigen::MatrixXd Phi_ts, G;
+    if (Ac.allFinite()) zoh(Ac, I, Ts, Phi_ts, G);
+    const double err = Ac.allFinite() ? (Phi_ts - c.Phi).cwiseAbs().maxCoeff() : HUGE_VAL;
     if (!(err <= 1e-8 * std::max(1.0, c.Phi.cwiseAbs().maxCoeff())))
         throw std::runtime_error(w + ": the block of 'states' has no real matrix logarithm (a pure delay or a mode at or "
                                  "above Nyquist in it); list the plant's physical states in 'states'");
-    const Eigen::MatrixXd G = gamma_of(Ac, Ts);
     Eigen::FullPivLU<Eigen::MatrixXd> lu(G);
     if (!lu.isInvertible()) throw std::runtime_error(w + ": the block of 'states' gives a singular hold integral");
     c.Gamma_inv = lu.inverse();
-    c.Phi_m = (Ac * (Ts / c.substeps)).exp();
-    c.Gamma_m = gamma_of(Ac, Ts / c.substeps);
+    zoh(Ac, I, Ts / c.substeps, c.Phi_m, c.Gamma_m);
     c.torque_m = c.Gamma_m * (c.Gamma_inv * ts);
 }
 
