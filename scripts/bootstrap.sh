@@ -8,7 +8,7 @@
 set -euo pipefail
 PKGS=(
   build-essential cmake pkg-config git
-  libeigen3-dev libceres-dev libopenblas-dev nlohmann-json3-dev zlib1g-dev
+  libeigen3-dev libceres-dev libopenblas-dev nlohmann-json3-dev zlib1g-dev libboost-dev
   libcmocka-dev libgtest-dev valgrind
   can-utils iproute2
   gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi

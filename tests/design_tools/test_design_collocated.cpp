@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <complex>
+#include <vector>
 
 #include "fracdesign/design/collocated.hpp"
 
@@ -53,12 +55,78 @@ TEST(DesignCollocated, ExactControllerKeepsPhaseMarginAboveSpecForEveryTipMass)
 TEST(DesignCollocated, CrossoverRangeIsSpannedByTheMassExtremes)
 {
     const FdDesign d = design_fd(collocated_plant(0.12), 70 * kDeg, 10.0, 0.8);
-    const auto r = crossover_range(d, 0.01, 0.23, 23);
+    const auto r = crossover_range(d, feliu_robot_arm(), 0.01, 0.23, 23);
     const auto heavy = collocated_plant(0.23), light = collocated_plant(0.01);
     const auto ch = modal_crossovers([&](double w) { return loop_fd(d, heavy, w, false); }, heavy);
     const auto cl = modal_crossovers([&](double w) { return loop_fd(d, light, w, false); }, light);
     EXPECT_NEAR(r.first, ch.first.w, 1e-9);
     EXPECT_NEAR(r.second, cl.first.w, 1e-9);
+}
+
+// PM in the notes' convention: 180 deg + angle(L), the angle wrapped to (-360, 0].
+double pm_of(std::complex<double> L)
+{
+    double a = std::arg(L) * 180.0 / 3.14159265358979323846;
+    if (a > 0.0) a -= 360.0;
+    return 180.0 + a;
+}
+
+// Specifications derived from the plant: case 1 puts w_c0 between a1 and z1, case 2 below a1.
+std::vector<std::pair<double, double>> specs_of(const CollocatedPlant& p)
+{
+    std::vector<std::pair<double, double>> v;  // (phi0 deg, w_c0)
+    for (double f : {0.2, 0.5, 0.8}) {
+        v.push_back({30.0 + 60.0 * f, p.a1 * std::pow(p.z1 / p.a1, f)});  // case 1
+        v.push_back({20.0 + 70.0 * f, p.a1 * (0.15 + 0.7 * f)});          // case 2
+    }
+    return v;
+}
+
+void expect_crossovers_where_the_case_puts_them(const CollocatedArm& arm, const CollocatedPlant& p)
+{
+    for (const auto& [phi0, wc0] : specs_of(p)) {
+        const FdDesign d = design_fd(p, phi0 * kDeg, wc0, 0.0, false);  // exact controller (47)
+        const int expected_case = wc0 < p.a1 ? 2 : 1;
+        ASSERT_EQ(d.theorem_case, expected_case) << wc0;
+        const auto L = [&](double w) { return loop_fd(d, p, w, true); };
+        const auto c = modal_crossovers(L, p, d.theorem_case);
+        for (const Crossover& x : {c.first, c.second}) {
+            EXPECT_NEAR(std::abs(L(x.w)), 1.0, 1e-9) << phi0 << " deg, " << wc0 << " rad/s: w = " << x.w;
+            EXPECT_NEAR(x.pm_deg, pm_of(L(x.w)), 1e-9);
+        }
+        // (24) puts the nominal mode-1 crossover at w_c0 exactly, inside the case's interval
+        EXPECT_NEAR(c.first.w, wc0, 1e-8 * wc0) << "case " << d.theorem_case << ", phi0 " << phi0;
+        if (d.theorem_case == 1) {
+            EXPECT_GT(c.first.w, p.a1);
+            EXPECT_LT(c.first.w, p.z1);
+            EXPECT_GT(c.second.w, p.a2);
+            EXPECT_NEAR(c.first.pm_deg, phi0, 1.0);  // angle(P) ~ -180 deg there (light damping)
+        } else {
+            EXPECT_LT(c.first.w, p.a1);
+            EXPECT_GT(c.second.w, p.z1);
+            EXPECT_LT(c.second.w, p.a2);
+            EXPECT_NEAR(c.first.pm_deg, -phi0, 1.0);  // Theorem 5.2: "phase margin -phi0", angle(P) ~ 0
+        }
+        // Theorem 5: closed-loop stable; the robust range holds the nominal crossover and lies in the interval
+        const NyquistResult n = loop_fd_nyquist(d, p, true);
+        EXPECT_TRUE(n.stable) << n.detail;
+        const auto r = crossover_range(d, arm, arm.m2_min, arm.m2_max, 9);
+        EXPECT_LE(r.first, wc0 * (1 + 1e-6));
+        EXPECT_GE(r.second, wc0 * (1 - 1e-6));
+        if (d.theorem_case == 2) EXPECT_LT(r.second, arm.plant(arm.m2_min).a1);
+    }
+}
+
+TEST(DesignCollocated, CrossoversAreWhereTheTheoremCasePutsThemOnThePapersRobot)
+{
+    // Case 2 used to be searched in (a1, z1): phi0 = 60, w_c0 = 3 reported 15.44 rad/s (PM 120 deg).
+    const CollocatedArm arm = feliu_robot_arm();
+    const CollocatedPlant p = arm.plant(arm.m2_nominal);
+    const FdDesign d = design_fd(p, 60 * kDeg, 3.0);
+    const auto c = modal_crossovers([&](double w) { return loop_fd(d, p, w, true); }, p, d.theorem_case);
+    EXPECT_NEAR(c.first.w, 3.0, 0.01);
+    EXPECT_NEAR(c.first.pm_deg, -60.0, 1.0);
+    expect_crossovers_where_the_case_puts_them(arm, p);
 }
 
 TEST(DesignCollocated, UncoveredCrossoverIsReportedWithTheAllowedRanges)

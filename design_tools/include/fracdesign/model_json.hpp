@@ -49,9 +49,14 @@ struct AntennaModelSpec {
     AntennaDamping<double> damping{0, 0, 0, 0};  // must respect the structure's fixed values (Table 2)
 };
 
+// The seed 002 collocated arm: the paper's printed robot (document fields m2_lb, m2_range_lb) or a
+// physical two-lumped-mass arm (link, masses, moment_gain, inner_loop, damping); docs/model_format.md.
 struct CollocatedModelSpec {
-    double m2_lb = kFeliuM2Nominal;
+    CollocatedArm arm = feliu_robot_arm();  // the plant is arm.plant(arm.m2_nominal)
     bool damped = true;
+    CollocatedModelSpec() = default;
+    CollocatedModelSpec(double m2_lb, bool damped_) : damped(damped_) { arm.m2_nominal = m2_lb; }
+    CollocatedModelSpec(const CollocatedArm& a, bool damped_) : arm(a), damped(damped_) {}
 };
 
 struct FoProcessModelSpec {

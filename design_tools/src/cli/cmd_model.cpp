@@ -134,14 +134,17 @@ json summarize(const ModelSpec& m, const Args& a, bool print)
                 std::printf("G(j%g) = %.7g %+.7gj N m/rad\n", e["w"].get<double>(), e["G"][0].get<double>(), e["G"][1].get<double>());
         }
     } else if (auto* c = std::get_if<CollocatedModelSpec>(&m)) {
-        const CollocatedPlant p = collocated_plant(c->m2_lb);
+        const CollocatedPlant p = c->arm.plant(c->arm.m2_nominal);
         r = {{"a1", p.a1}, {"z1", p.z1}, {"a2", p.a2}, {"b", p.b}, {"k1", p.k1}, {"k2", p.k2},
-             {"zeta1", p.zeta1}, {"zeta2", p.zeta2}, {"xi1", p.xi1}};
+             {"zeta1", p.zeta1}, {"zeta2", p.zeta2}, {"xi1", p.xi1}, {"eps", p.eps},
+             {"G2_numerator", {p.g2_s2, p.g2_0}}};
         json fr = json::array();
         for (double w : freq_list(a, {1, 10, 40})) fr.push_back({{"w", w}, {"P", cx(collocated_P(p, w, c->damped))}});
         r["frf"] = fr;
         if (print) {
-            std::printf("collocated plant (seed 002), m2 = %g lb, %s\n", c->m2_lb, c->damped ? "Rayleigh damped" : "undamped");
+            std::printf("collocated plant (seed 002, %s), m2 = %g %s, %s\n",
+                        c->arm.form == CollocatedArm::Form::Printed ? "the paper's robot" : "two-lumped-mass arm",
+                        p.m2, c->arm.mass_unit(), c->damped ? "Rayleigh damped" : "undamped");
             std::printf("a1 = %.4f  z1 = %.4f  a2 = %.4f rad/s, b = %g, k1 = %.5f, k2 = %.5f\n", p.a1, p.z1, p.a2, p.b, p.k1, p.k2);
             std::printf("zeta1 = %.5f  zeta2 = %.5f  xi1 = %.5f\n", p.zeta1, p.zeta2, p.xi1);
             for (const auto& e : fr)

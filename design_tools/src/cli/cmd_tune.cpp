@@ -8,6 +8,7 @@
 #include "fracdesign/cli.hpp"
 #include "fracdesign/design/collocated.hpp"
 #include "fracdesign/design/fopi_fopd.hpp"
+#include "fracdesign/model_json.hpp"
 
 namespace fracdesign {
 namespace {
@@ -86,17 +87,44 @@ int run_fo(FoKind kind, const Args& args)
     return 0;
 }
 
+// The collocated arm to design for: --model PLANT.json (kind "collocated") or the paper's robot,
+// with --m2 / --m2-lo / --m2-hi overriding the nominal tip mass and its range (in the arm's unit).
+CollocatedArm collocated_arm(const Args& args)
+{
+    CollocatedArm arm = feliu_robot_arm();
+    if (args.has("model")) {
+        const ModelSpec m = read_model_file(args.str("model"));  // ModelFormatError names the field
+        const auto* c = std::get_if<CollocatedModelSpec>(&m);
+        if (!c)
+            throw ModelFormatError("kind", "is \"" + model_kind(m) + "\"; tune collocated needs a \"collocated\" model");
+        arm = c->arm;
+    }
+    arm.m2_nominal = args.num("m2", arm.m2_nominal);
+    arm.m2_min = args.num("m2-lo", arm.m2_min);
+    arm.m2_max = args.num("m2-hi", arm.m2_max);
+    // A range given on the command line must still hold the nominal mass (and vice versa).
+    try {
+        arm.validate();
+    } catch (const CollocatedArmError& e) {
+        const bool cli = (e.field.find("m2") != std::string::npos) && (args.has("m2") || args.has("m2-lo") || args.has("m2-hi"));
+        if (cli) throw UsageError("options --m2/--m2-lo/--m2-hi: " + e.field + " " + e.problem);
+        throw;
+    }
+    return arm;
+}
+
 int run_collocated(const Args& args)
 {
-    args.check_known({"json", "phi0", "wc0", "m2", "alpha", "m2-lo", "m2-hi", "exact", "prefilter", "prefilter-start"});
+    args.check_known({"json", "model", "phi0", "wc0", "m2", "alpha", "m2-lo", "m2-hi", "exact", "prefilter",
+                      "prefilter-start"});
     constexpr double kDeg = 3.14159265358979323846 / 180.0;
     const double phi0_deg = args.num("phi0", 0.0), wc0 = args.num("wc0", 0.0);
     if (!args.has("phi0") || !args.has("wc0")) throw UsageError("missing required option --phi0 (deg) or --wc0 (rad/s)");
-    if (!(phi0_deg > 0.0 && phi0_deg <= 90.0)) throw UsageError("--phi0 must lie in (0, 90] degrees (Theorem 5)");
-    const double m2 = args.num("m2", kFeliuM2Nominal), lo = args.num("m2-lo", kFeliuM2Min),
-                 hi = args.num("m2-hi", kFeliuM2Max);
-    if (!(lo > 0.0 && hi >= lo && m2 > 0.0)) throw UsageError("need 0 < --m2-lo <= --m2-hi and --m2 > 0 (lb)");
-    const CollocatedPlant nominal = collocated_plant(m2);
+    if (!(phi0_deg > 0.0 && phi0_deg <= 90.0))
+        throw UsageError("option --phi0: is " + std::to_string(phi0_deg) + ", must lie in (0, 90] degrees (Theorem 5)");
+    const CollocatedArm arm = collocated_arm(args);
+    const char* unit = arm.mass_unit();
+    const CollocatedPlant nominal = arm.plant(arm.m2_nominal);
     design::FdDesign d;
     try {
         d = design::design_fd(nominal, phi0_deg * kDeg, wc0, args.num("alpha", 0.0), !args.has("exact"));
@@ -105,11 +133,20 @@ int run_collocated(const Args& args)
         return 1;
     }
     const auto L = [&](double w) { return design::loop_fd(d, nominal, w, true); };
-    const auto c = design::modal_crossovers(L, nominal);
-    const auto range = design::crossover_range(d, lo, hi);
+    const auto c = design::modal_crossovers(L, nominal, d.theorem_case);
+    const auto all = design::crossovers(L, 1e-3 * nominal.a1, 1e4 * nominal.a2,
+                                        static_cast<int>(800.0 * std::log10(1e7 * nominal.a2 / nominal.a1)));
+    const auto range = design::crossover_range(d, arm, arm.m2_min, arm.m2_max);
+    const double eps = nominal.eps;
+    const auto stab = design::loop_fd_nyquist(d, nominal, true);
     nlohmann::json j = design::to_json(d);
-    j["nominal_loop"] = {{"wc1", c.first.w}, {"pm1_deg", c.first.pm_deg}, {"wc2", c.second.w}, {"pm2_deg", c.second.pm_deg}};
-    j["crossover_range"] = {{"m2_lb", {lo, hi}}, {"wc", {range.first, range.second}}};
+    j["plant"] = model_to_json(CollocatedModelSpec{arm, true});
+    j["nominal_loop"] = {{"wc1", c.first.w}, {"pm1_deg", c.first.pm_deg}, {"wc2", c.second.w}, {"pm2_deg", c.second.pm_deg},
+                         {"crossovers", nlohmann::json::array()},
+                         {"nyquist", {{"stable", stab.stable}, {"encirclements", stab.encirclements},
+                                      {"min_distance", stab.min_distance}, {"w_min", stab.w_min}}}};
+    for (const auto& x : all) j["nominal_loop"]["crossovers"].push_back({{"w", x.w}, {"pm_deg", x.pm_deg}});
+    j["crossover_range"] = {{"m2", {arm.m2_min, arm.m2_max}}, {"m2_unit", unit}, {"wc", {range.first, range.second}}};
     design::PrefilterResult pf;
     if (args.has("prefilter")) {
         design::Prefilter start;
@@ -132,14 +169,25 @@ int run_collocated(const Args& args)
         std::cout << j.dump(2) << "\n";
         return 0;
     }
-    std::printf("collocated fractional damping (seed 002, Theorem 5 case %d), nominal m2 = %g lb\n", d.theorem_case, m2);
-    std::printf("  a1 = %.4f, z1 = %.4f, a2 = %.4f rad/s\n", nominal.a1, nominal.z1, nominal.a2);
-    std::printf("  alpha = %.6g (exact %.6g), Kc = %.6g; C(s) = Kc %s s^(alpha-2)\n", d.alpha, d.alpha_exact, d.Kc,
-                d.q_approx ? "(1 + 0.0142 s)" : "(1 + 0.0071 s)^2");
-    std::printf("  nominal loop: w_c1 = %.4f rad/s, PM1 = %.2f deg; w_c2 = %.4f rad/s, PM2 = %.2f deg\n", c.first.w,
-                c.first.pm_deg, c.second.w, c.second.pm_deg);
-    std::printf("  robust crossover range over m2 in [%g, %g] lb: [%.4f, %.4f] rad/s\n", lo, hi, range.first,
-                range.second);
+    const bool c1 = d.theorem_case == 1;
+    std::printf("collocated fractional damping (seed 002, Theorem 5 case %d: w_c0 %s), %s, nominal m2 = %g %s\n",
+                d.theorem_case, c1 ? "in (a1, z1)" : "< a1",
+                arm.form == CollocatedArm::Form::Printed ? "the paper's robot" : "two-lumped-mass arm", arm.m2_nominal, unit);
+    std::printf("  a1 = %.4f, z1 = %.4f, a2 = %.4f rad/s, b = %.6g, eps = %g s\n", nominal.a1, nominal.z1, nominal.a2,
+                nominal.b, eps);
+    std::printf("  alpha = %.6g (exact %.6g), Kc = %.6g; C(s) = Kc (1 + %g s)%s s^(alpha-2)\n", d.alpha, d.alpha_exact,
+                d.Kc, d.q_approx ? 2.0 * eps : eps, d.q_approx ? "" : "^2");
+    std::printf("  nominal loop: w_c1 = %.4f rad/s, PM1 = %.2f deg (%s); w_c2 = %.4f rad/s, PM2 = %.2f deg (%s)\n",
+                c.first.w, c.first.pm_deg, c1 ? "in (a1, z1)" : "in (0, a1)", c.second.w, c.second.pm_deg,
+                c1 ? "above a2" : "in (z1, a2)");
+    if (!c1)
+        std::printf("  (case 2: PM = -phi0 in the (-360, 0] convention, the crossing is %g deg above -1; Theorem 5.2)\n",
+                    phi0_deg);
+    std::printf("  all crossovers:");
+    for (const auto& x : all) std::printf(" %.4f (%.2f deg)", x.w, x.pm_deg);
+    std::printf("\n  closed loop (nominal, damped): %s\n", stab.detail.c_str());
+    std::printf("  robust crossover range over m2 in [%g, %g] %s: [%.4f, %.4f] rad/s\n", arm.m2_min, arm.m2_max, unit,
+                range.first, range.second);
     if (args.has("prefilter"))
         std::printf("  prefilter F = (1 + %.4g s^%.4g)/(1 + %.4g s): +-0.3 dB band %.4f rad/s, -3 dB bandwidth %.4f rad/s\n",
                     pf.F.fn, pf.F.beta, pf.F.fd, pf.band, j["prefilter"]["bandwidth_3db"].get<double>());

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 
 namespace fracdesign {
 
@@ -158,6 +159,64 @@ void antenna_check_structure(AntennaStructure s, const AntennaDamping<double>& d
     if (d.lambda >= 2) throw ModelFormatError("damping.lambda", "must be < 2 (seed 000 Remark 1)");
 }
 
+// [lo, hi] pair of numbers at key (optional: def when absent).
+std::pair<double, double> range_pair(const json& j, const std::string& path, const std::string& key,
+                                     std::pair<double, double> def)
+{
+    if (!j.contains(key)) return def;
+    const json& r = j.at(key);
+    const std::string f = join(path, key);
+    if (!r.is_array() || r.size() != 2) throw ModelFormatError(f, "must be an array [lo, hi] of two numbers");
+    return {number(r, f, "0", Range::Any, &r[0]), number(r, f, "1", Range::Any, &r[1])};
+}
+
+// The seed 002 collocated arm: the printed robot (m2_lb) or the physical form (link + masses). Types are
+// checked here, ranges by CollocatedArm::validate (one message naming field, value and allowed range).
+CollocatedModelSpec collocated_from(const json& j)
+{
+    CollocatedModelSpec c;
+    CollocatedArm& a = c.arm;
+    const bool printed = j.contains("m2_lb"), physical = j.contains("link") || j.contains("masses");
+    if (printed && physical)
+        throw ModelFormatError("m2_lb", "is the printed robot's tip mass; a physical arm (link, masses) gives masses.m2");
+    if (!printed && !physical)
+        throw ModelFormatError("masses", "is missing (give link and masses, or m2_lb for the paper's robot)");
+    if (printed) {
+        a = feliu_robot_arm();
+        a.m2_nominal = number(j, "", "m2_lb", Range::Any);
+        std::tie(a.m2_min, a.m2_max) = range_pair(j, "", "m2_range_lb", {a.m2_min, a.m2_max});
+    } else {
+        a.form = CollocatedArm::Form::Physical;
+        const json& l = member(j, "", "link");
+        a.L = number(l, "link", "L", Range::Any);
+        a.EI = number(l, "link", "EI", Range::Any);
+        const json& m = member(j, "", "masses");
+        a.m1 = number(m, "masses", "m1", Range::Any);
+        a.x1 = number(m, "masses", "x1", Range::Any);
+        a.m2_nominal = number(m, "masses", "m2", Range::Any);
+        // the admissible tip masses of the robust design; without a range the arm has one tip mass
+        std::tie(a.m2_min, a.m2_max) = range_pair(m, "masses", "m2_range", {a.m2_nominal, a.m2_nominal});
+        const json one = 1.0;
+        a.moment_gain = number(j, "", "moment_gain", Range::Any, &one);
+    }
+    if (j.contains("inner_loop")) a.eps = number(j.at("inner_loop"), "inner_loop", "eps", Range::Any);
+    if (j.contains("damping")) {
+        const json& d = j.at("damping");
+        a.rayleigh_a = number(d, "damping", "rayleigh_a", Range::Any);
+        a.rayleigh_b = number(d, "damping", "rayleigh_b", Range::Any);
+    }
+    if (j.contains("damped")) {
+        if (!j.at("damped").is_boolean()) throw ModelFormatError("damped", "must be true or false");
+        c.damped = j.at("damped").get<bool>();
+    }
+    try {
+        a.validate();
+    } catch (const CollocatedArmError& e) {
+        throw ModelFormatError(e.field, e.problem);
+    }
+    return c;
+}
+
 }  // namespace
 
 std::string antenna_structure_name(AntennaStructure s)
@@ -196,7 +255,17 @@ json model_to_json(const ModelSpec& m)
         j["damping"] = {{"zeta", n->damping.zeta}, {"alpha", n->damping.alpha}, {"gamma", n->damping.gamma},
                         {"lambda", n->damping.lambda}};
     } else if (auto* c = std::get_if<CollocatedModelSpec>(&m)) {
-        j["m2_lb"] = c->m2_lb;
+        const CollocatedArm& a = c->arm;
+        if (a.form == CollocatedArm::Form::Printed) {
+            j["m2_lb"] = a.m2_nominal;
+            j["m2_range_lb"] = {a.m2_min, a.m2_max};
+        } else {
+            j["link"] = {{"L", a.L}, {"EI", a.EI}};
+            j["masses"] = {{"m1", a.m1}, {"x1", a.x1}, {"m2", a.m2_nominal}, {"m2_range", {a.m2_min, a.m2_max}}};
+            j["moment_gain"] = a.moment_gain;
+        }
+        j["inner_loop"] = {{"eps", a.eps}};
+        j["damping"] = {{"rayleigh_a", a.rayleigh_a}, {"rayleigh_b", a.rayleigh_b}};
         j["damped"] = c->damped;
     } else if (auto* f = std::get_if<FoProcessModelSpec>(&m)) {
         j["K"] = f->process.K;
@@ -283,15 +352,7 @@ ModelSpec model_from_json(const json& j)
         antenna_check_structure(a.structure, a.damping);
         return a;
     }
-    if (k == "collocated") {
-        CollocatedModelSpec c;
-        c.m2_lb = number(j, "", "m2_lb", Range::Positive);
-        if (j.contains("damped")) {
-            if (!j.at("damped").is_boolean()) throw ModelFormatError("damped", "must be true or false");
-            c.damped = j.at("damped").get<bool>();
-        }
-        return c;
-    }
+    if (k == "collocated") return collocated_from(j);
     if (k == "foprocess") {
         FoProcessModelSpec f;
         f.process.K = number(j, "", "K", Range::Any);
@@ -349,7 +410,8 @@ StateSpace model_state_space(const ModelSpec& m)
 {
     if (auto* b = std::get_if<BeamModelSpec>(&m)) return build_ps_beam(b->beam, b->N, b->collocation).ph.state_space();
     if (auto* a = std::get_if<ArmModelSpec>(&m)) return build_arm(a->beam, a->drive, a->options).arm.state_space();
-    if (auto* c = std::get_if<CollocatedModelSpec>(&m)) return collocated_state_space(collocated_plant(c->m2_lb), c->damped);
+    if (auto* c = std::get_if<CollocatedModelSpec>(&m))
+        return collocated_state_space(c->arm.plant(c->arm.m2_nominal), c->damped);
     if (auto* s = std::get_if<StateSpace>(&m)) return *s;
     throw std::invalid_argument("model: kind '" + model_kind(m) + "' is irrational and has no state space");
 }

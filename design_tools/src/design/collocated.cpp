@@ -20,9 +20,9 @@ using cplx = std::complex<double>;
 
 cplx jpow(double w, double a) { return std::polar(std::pow(w, a), a * kPi / 2.0); }
 
-cplx gm(double w)  // G_m (41)
+cplx gm(double eps, double w)  // G_m (41)
 {
-    const cplx d = 1.0 + cplx(0.0, kFeliuEps * w);
+    const cplx d = 1.0 + cplx(0.0, eps * w);
     return 1.0 / (d * d);
 }
 
@@ -94,15 +94,51 @@ FdDesign design_fd(const CollocatedPlant& nominal, double phi0, double wc0, doub
 
 cplx loop_fd(const FdDesign& d, const CollocatedPlant& p, double w, bool damped)
 {
-    // (49) with the approximation (48), else the exact (47) for which (1 + eps s)^2 G_m = 1.
-    const cplx q = d.q_approx ? (1.0 + cplx(0.0, 2.0 * kFeliuEps * w)) * gm(w) : cplx(1.0);
+    // (49) with the approximation (48), else the exact (47) for which (1 + eps s)^2 G_m = 1; the
+    // controller inverts the nominal inner loop, the plant brings its own.
+    const double ec = d.nominal.eps;
+    const cplx q = d.q_approx ? (1.0 + cplx(0.0, 2.0 * ec * w)) * gm(p.eps, w)
+                              : (1.0 + cplx(0.0, ec * w)) * (1.0 + cplx(0.0, ec * w)) * gm(p.eps, w);
     return d.Kc * jpow(w, d.alpha) * q * collocated_P(p, w, damped);
+}
+
+cplx loop_fd_s(const FdDesign& d, const CollocatedPlant& p, cplx s, bool damped)
+{
+    const double ec = d.nominal.eps;
+    const cplx gm_s = 1.0 / ((1.0 + p.eps * s) * (1.0 + p.eps * s));
+    const cplx q = d.q_approx ? (1.0 + 2.0 * ec * s) * gm_s : (1.0 + ec * s) * (1.0 + ec * s) * gm_s;
+    cplx P = 0.0;
+    const double z1 = damped ? p.zeta1 : 0.0, z2 = damped ? p.zeta2 : 0.0;
+    P += p.k1 / (s * s + 2.0 * z1 * p.a1 * s + p.a1 * p.a1);
+    P += p.k2 / (s * s + 2.0 * z2 * p.a2 * s + p.a2 * p.a2);
+    return d.Kc * std::pow(s, d.alpha) * q * P;
+}
+
+NyquistResult loop_fd_nyquist(const FdDesign& d, const CollocatedPlant& p, bool damped)
+{
+    const double z1 = damped ? p.zeta1 : 0.0, z2 = damped ? p.zeta2 : 0.0, ec = d.nominal.eps;
+    auto bound = [&](double r) {
+        const double qn = d.q_approx ? 1.0 + 2.0 * ec * r : (1.0 + ec * r) * (1.0 + ec * r);
+        const double q = qn / (1.0 + p.eps * p.eps * r * r);
+        const double d1 = r * r - 2.0 * z1 * p.a1 * r - p.a1 * p.a1, d2 = r * r - 2.0 * z2 * p.a2 * r - p.a2 * p.a2;
+        if (!(d1 > 0.0 && d2 > 0.0)) return std::numeric_limits<double>::infinity();
+        return d.Kc * std::pow(r, d.alpha) * q * (p.k1 / d1 + p.k2 / d2);
+    };
+    // the bound falls like r^(alpha - 2) at the end (alpha < 2); scan far beyond both corners
+    const double r_end = 1e6 * std::max(p.a2, p.eps > 0.0 ? 1.0 / p.eps : 0.0);
+    double w_hi = 2.0 * p.a2;
+    for (double r = 2.0 * p.a2; r < r_end; r *= 1.05)
+        if (!(bound(r) < 0.5)) w_hi = 1.05 * r;
+    std::vector<double> poles;
+    if (z1 == 0.0) poles.push_back(p.a1);
+    if (z2 == 0.0) poles.push_back(p.a2);
+    return nyquist_stability([&](cplx s) { return loop_fd_s(d, p, s, damped); }, 1e-6 * p.a1, w_hi, poles);
 }
 
 cplx loop_pi(double Kp, double Ki, const CollocatedPlant& p, double w, bool damped)
 {
     const cplx s(0.0, w);
-    return (Kp + Ki / s) * s * s * gm(w) * collocated_P(p, w, damped);
+    return (Kp + Ki / s) * s * s * gm(p.eps, w) * collocated_P(p, w, damped);
 }
 
 std::vector<Crossover> crossovers(const std::function<cplx(double)>& L, double w_lo, double w_hi, int grid)
@@ -129,29 +165,50 @@ std::vector<Crossover> crossovers(const std::function<cplx(double)>& L, double w
     return out;
 }
 
-std::pair<Crossover, Crossover> modal_crossovers(const std::function<cplx(double)>& L, const CollocatedPlant& p)
+std::pair<Crossover, Crossover> modal_crossovers(const std::function<cplx(double)>& L, const CollocatedPlant& p,
+                                                 int theorem_case)
 {
-    const auto c = crossovers(L, 0.1, 1e4);
+    if (theorem_case != 1 && theorem_case != 2) throw std::invalid_argument("theorem case must be 1 or 2");
+    // 800 grid points per decade (as many as Tables 1-2 need to resolve the narrow band above a2)
+    const double lo = 1e-3 * p.a1, hi = 1e4 * p.a2;
+    const auto c = crossovers(L, lo, hi, static_cast<int>(800.0 * std::log10(hi / lo)));
     const Crossover* m1 = nullptr;
     const Crossover* m2 = nullptr;
     for (const auto& x : c) {
-        if (!m1 && x.w > p.a1 && x.w < p.z1) m1 = &x;
-        if (x.w > p.a2) m2 = &x;
+        if (theorem_case == 1) {
+            // Table 1: mode 1 in (a1, z1), mode 2 the highest crossover above a2 (P < 0 there)
+            if (!m1 && x.w > p.a1 && x.w < p.z1) m1 = &x;
+            if (x.w > p.a2) m2 = &x;
+        } else {
+            // Theorem 2 / 5 case 2: the crossovers where P > 0, mode 1 in (0, a1), mode 2 in (z1, a2)
+            if (x.w < p.a1) m1 = &x;
+            if (x.w > p.z1 && x.w < p.a2) m2 = &x;
+        }
     }
-    if (!m1 || !m2) throw std::runtime_error("loop has no crossover in (a1, z1) or above a2");
+    if (!m1 || !m2)
+        throw std::runtime_error(theorem_case == 1 ? "loop has no crossover in (a1, z1) or above a2"
+                                                   : "loop has no crossover in (0, a1) or in (z1, a2)");
     return {*m1, *m2};
 }
 
-std::pair<double, double> crossover_range(const FdDesign& d, double m2_lo, double m2_hi, int points)
+std::pair<double, double> crossover_range(const FdDesign& d, const CollocatedArm& arm, double m2_lo, double m2_hi,
+                                          int points)
 {
+    if (!(std::isfinite(m2_lo) && m2_lo > 0.0 && std::isfinite(m2_hi) && m2_hi >= m2_lo && points >= 1))
+        throw std::invalid_argument("crossover range needs 0 < m2_lo <= m2_hi and points >= 1");
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (int i = 0; i < points; ++i) {
         const double m2 = m2_lo + (m2_hi - m2_lo) * i / std::max(1, points - 1);
-        const CollocatedPlant p = collocated_plant(m2);
-        const auto c = crossovers([&](double w) { return loop_fd(d, p, w, false); }, p.a1 * 1.0001, p.z1 * 0.9999, 400);
+        const CollocatedPlant p = arm.plant(m2);
+        // Theorem 1: one root of (7) in (a1, z1) (case 1); Theorem 2: one root in (0, a1) (case 2).
+        const double w_lo = d.theorem_case == 1 ? p.a1 * 1.0001 : p.a1 * 1e-4;
+        const double w_hi = d.theorem_case == 1 ? p.z1 * 0.9999 : p.a1 * 0.9999;
+        const auto c = crossovers([&](double w) { return loop_fd(d, p, w, false); }, w_lo, w_hi, 400);
         if (c.size() != 1)
-            throw std::runtime_error("eq. (7) has " + std::to_string(c.size()) + " roots in (a1, z1) at m2 = " +
-                                     std::to_string(m2) + " lb (Theorem 1 predicts exactly one)");
+            throw std::runtime_error("eq. (7) has " + std::to_string(c.size()) + " roots in " +
+                                     (d.theorem_case == 1 ? "(a1, z1)" : "(0, a1)") + " at m2 = " + std::to_string(m2) +
+                                     " " + arm.mass_unit() + " (Theorem " + (d.theorem_case == 1 ? "1" : "2") +
+                                     " predicts exactly one)");
         lo = std::min(lo, c[0].w);
         hi = std::max(hi, c[0].w);
     }
@@ -166,8 +223,8 @@ cplx closed_loop_tip(const std::function<cplx(double)>& L, const Prefilter& F, c
     const cplx s(0.0, w);
     const double z1 = damped ? p.zeta1 : 0.0, z2 = damped ? p.zeta2 : 0.0;
     const cplx den = (s * s + 2.0 * z1 * p.a1 * s + p.a1 * p.a1) * (s * s + 2.0 * z2 * p.a2 * s + p.a2 * p.a2);
-    const cplx g2 = -(5.457 / p.m2_lb) * (s * s - 1273.3) / den;  // (39), damped denominator of (46)
-    return F.at(w) * gm(w) * g2 / (1.0 + L(w));                   // (50)
+    const cplx g2 = (p.g2_s2 * s * s + p.g2_0) / den;  // (39), damped denominator of (46)
+    return F.at(w) * gm(p.eps, w) * g2 / (1.0 + L(w));  // (50)
 }
 
 double bandwidth_3db(const std::function<cplx(double)>& H)
@@ -338,8 +395,8 @@ nlohmann::json to_json(const FdDesign& d)
              {{"form", d.q_approx ? "C(s) = Kc (1 + 2 eps s) s^(alpha-2)" : "C(s) = Kc (1 + eps s)^2 s^(alpha-2)"},
               {"Kc", d.Kc},
               {"alpha", d.alpha},
-              {"eps", kFeliuEps}}},
-            {"nominal", {{"m2_lb", d.nominal.m2_lb}, {"a1", d.nominal.a1}, {"z1", d.nominal.z1}, {"a2", d.nominal.a2}}}};
+              {"eps", d.nominal.eps}}},
+            {"nominal", {{"m2", d.nominal.m2}, {"a1", d.nominal.a1}, {"z1", d.nominal.z1}, {"a2", d.nominal.a2}}}};
 }
 
 }  // namespace fracdesign::design

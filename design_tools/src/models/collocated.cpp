@@ -2,34 +2,111 @@
 #include "fracdesign/models/collocated.hpp"
 
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
 namespace fracdesign {
 
-double feliu_rayleigh_zeta(double w) { return 0.5 * (0.059 / w + 2.9e-5 * w); }  // (44)
-
-CollocatedPlant collocated_plant(double m2)
+CollocatedArmError::CollocatedArmError(const std::string& f, const std::string& p)
+    : std::invalid_argument("collocated arm: field '" + f + "': " + p), field(f), problem(p)
 {
-    if (!std::isfinite(m2) || m2 <= 0) throw std::invalid_argument("collocated plant: m2 must be finite and > 0 (lb)");
-    CollocatedPlant p;
-    p.m2_lb = m2;
-    // (42): denominator s^4 + c2 s^2 + c0, numerator b (s^2 + z1^2)
-    const double c2 = 1455.2 + 21.83 / m2, c0 = 6948.4 / m2;
-    const double disc = std::sqrt(c2 * c2 - 4.0 * c0);
-    const double a1s = 0.5 * (c2 - disc), a2s = 0.5 * (c2 + disc), z1s = 636.65 + 19.1 / m2;
+}
+
+namespace {
+
+std::string num(double v)
+{
+    std::ostringstream os;
+    os.precision(10);
+    os << v;
+    return os.str();
+}
+
+void need(bool ok, const std::string& field, double v, const std::string& allowed)
+{
+    if (!ok) throw CollocatedArmError(field, "is " + num(v) + ", must be " + allowed);
+}
+
+// Partial fractions (45) of P = b (s^2 + z1^2)/((s^2 + a1^2)(s^2 + a2^2)), Lemma 1: k1, k2 > 0 under
+// pole-zero interlacing; Rayleigh damping (44) on both modes; the zero damping of the sum (46) is
+// (k1 zeta2 a2 + k2 zeta1 a1)/(b z1), which equals zeta(z1) exactly for Rayleigh damping (notes 002 sec. 6.4).
+void finish(CollocatedPlant& p, const CollocatedArm& arm, double a1s, double a2s, double z1s)
+{
     p.a1 = std::sqrt(a1s);
     p.a2 = std::sqrt(a2s);
     p.z1 = std::sqrt(z1s);
-    p.b = 4.11;
-    // partial fractions (45), Lemma 1: k1, k2 > 0 under pole-zero interlacing
     p.k1 = p.b * (z1s - a1s) / (a2s - a1s);
     p.k2 = p.b * (a2s - z1s) / (a2s - a1s);
-    p.zeta1 = feliu_rayleigh_zeta(p.a1);
-    p.zeta2 = feliu_rayleigh_zeta(p.a2);
-    p.xi1 = feliu_rayleigh_zeta(p.z1);  // equals (k1 zeta2 a2 + k2 zeta1 a1)/(b z1) exactly (notes 002 sec. 6.4)
+    p.zeta1 = arm.zeta(p.a1);
+    p.zeta2 = arm.zeta(p.a2);
+    p.xi1 = arm.zeta(p.z1);
+    p.eps = arm.eps;
+}
+
+}  // namespace
+
+void CollocatedArm::validate() const
+{
+    const std::string mu = std::string(" ") + mass_unit();
+    auto pos = [](double v) { return std::isfinite(v) && v > 0.0; };
+    auto nonneg = [](double v) { return std::isfinite(v) && v >= 0.0; };
+    if (form == Form::Physical) {
+        need(pos(L), "link.L", L, "finite and > 0 (m)");
+        need(pos(EI), "link.EI", EI, "finite and > 0 (N m^2)");
+        need(pos(m1), "masses.m1", m1, "finite and > 0 (kg)");
+        need(pos(x1) && x1 < L, "masses.x1", x1, "in (0, link.L) = (0, " + num(L) + ") m");
+        need(pos(moment_gain), "moment_gain", moment_gain, "finite and > 0 (reading per N m)");
+    }
+    const std::string m2f = form == Form::Physical ? "masses.m2" : "m2_lb";
+    const std::string rf = form == Form::Physical ? "masses.m2_range" : "m2_range_lb";
+    need(pos(m2_nominal), m2f, m2_nominal, "finite and > 0" + mu);
+    need(pos(m2_min), rf + "[0]", m2_min, "finite and > 0" + mu);
+    need(std::isfinite(m2_max) && m2_max >= m2_min, rf + "[1]", m2_max, ">= " + rf + "[0] = " + num(m2_min) + mu);
+    need(m2_nominal >= m2_min && m2_nominal <= m2_max, m2f, m2_nominal,
+         "inside " + rf + " = [" + num(m2_min) + ", " + num(m2_max) + "]" + mu);
+    need(nonneg(eps) && eps <= 1.0, "inner_loop.eps", eps, "in [0, 1] s");
+    need(nonneg(rayleigh_a), "damping.rayleigh_a", rayleigh_a, "finite and >= 0 (1/s)");
+    need(nonneg(rayleigh_b), "damping.rayleigh_b", rayleigh_b, "finite and >= 0 (s)");
+}
+
+CollocatedPlant CollocatedArm::plant(double m2) const
+{
+    if (!std::isfinite(m2) || m2 <= 0)
+        throw std::invalid_argument("collocated plant: m2 must be finite and > 0 (" + std::string(mass_unit()) + ")");
+    CollocatedPlant p;
+    p.m2 = m2;
+    if (form == Form::Printed) {
+        // (42): denominator s^4 + c2 s^2 + c0, numerator b (s^2 + z1^2); (39): G_2 numerator
+        const double c2 = 1455.2 + 21.83 / m2, c0 = 6948.4 / m2;
+        const double disc = std::sqrt(c2 * c2 - 4.0 * c0);
+        p.b = 4.11;
+        p.g2_s2 = -5.457 / m2;
+        p.g2_0 = 5.457 * 1273.3 / m2;
+        finish(p, *this, 0.5 * (c2 - disc), 0.5 * (c2 + disc), 636.65 + 19.1 / m2);
+        return p;
+    }
+    // Physical form (see the header): K' = X F^-1 X with the clamped-link flexibility F.
+    const double f11 = x1 * x1 * x1 / (3.0 * EI), f12 = x1 * x1 * (3.0 * L - x1) / (6.0 * EI),
+                 f22 = L * L * L / (3.0 * EI);
+    const double det = f11 * f22 - f12 * f12;  // > 0: F is a flexibility (Gram) matrix
+    const double K11 = x1 * x1 * f22 / det, K12 = -x1 * L * f12 / det, K22 = L * L * f11 / det;
+    const double M1 = m1 * x1 * x1, M2 = m2 * L * L;
+    const double c2 = K11 / M1 + K22 / M2, c0 = (K11 * K22 - K12 * K12) / (M1 * M2);
+    const double disc = std::sqrt(c2 * c2 - 4.0 * c0);
+    const double u1 = K11 + K12, u2 = K12 + K22;  // K' 1
+    // P = g 1'K' adj(M s^2 + K') M 1 / det(M s^2 + K'); theta_2/theta_m = [adj(M s^2 + K') K' 1]_2 / det
+    p.b = moment_gain * (u1 + u2);
+    const double z1s = (u1 * (K22 * M1 - K12 * M2) + u2 * (K11 * M2 - K12 * M1)) / (M1 * M2 * (u1 + u2));
+    p.g2_s2 = u2 / M2;
+    p.g2_0 = (K11 * u2 - K12 * u1) / (M1 * M2);
+    finish(p, *this, 0.5 * (c2 - disc), 0.5 * (c2 + disc), z1s);
     return p;
 }
+
+CollocatedArm feliu_robot_arm() { return CollocatedArm{}; }
+
+CollocatedPlant collocated_plant(double m2) { return feliu_robot_arm().plant(m2); }
 
 void CollocatedModes::validate() const
 {

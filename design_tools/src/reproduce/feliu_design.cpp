@@ -104,7 +104,7 @@ CheckRegistrar table2({"feliu.table2", "seed 002 Table 2, PI (54) on the damped 
 
 CheckRegistrar range70({"feliu.range.70", "seed 002 Sec. 5.2 (Theorem 1 eq. (7)), notes 002 section 10.2", [] {
     const auto d = robot_design(0.8);
-    const auto rg = design::crossover_range(d, kFeliuM2Min, kFeliuM2Max);
+    const auto rg = design::crossover_range(d, feliu_robot_arm(), kFeliuM2Min, kFeliuM2Max);
     CheckOutcome r;
     r.expected = {8.607, 19.239};
     r.got = {rg.first, rg.second};

@@ -9,13 +9,17 @@
 // only one that reproduces the published controller (52).
 //
 // Feasibility is never clipped: every test is reported with its value and bound.
-//  - delay limit (17): phi_m > 0, i.e. tau_n < phi_mn / w_cn;
+//  - delay limit (17): phi_m > 0, i.e. tau_n < phi_mn / w_cn (nothing more: a phi_mn beyond pi is
+//    no reason to refuse a design, the delay only turns the phase further; stability is decided by
+//    the Nyquist test);
 //  - low-frequency condition (18) of the PI, with the exact boundary
 //    phi_mn < pi - arg(1 + (j w_cn)^lambda)  (notes/001 section 3.2; the printed
 //    fits of Theorem 1 are not used: they fail numerical checks, notes/001 3.5);
-//  - Robust High-Frequency Condition (22)/(35), checked numerically: the delay-free
-//    loop magnitude |C_n(jw) G_n*(jw)| strictly decreasing on (w_cn, 1000 w_cn];
-//  - PD only: the stability condition K_pn + delta_n > 0 with delta_n = 1 (Section 4.3).
+//  - Robust High-Frequency Condition (22)/(35): the delay-free loop magnitude
+//    |C_n(jw) G_n*(jw)| strictly decreasing beyond w_cn (rhfc_max_slope < 0);
+//  - PD only: the stability condition K_pn + delta_n > 0 with delta_n = 1 (Section 4.3);
+//  - closed-loop stability of the real loop with the delay, C(s) G(s) (the PD's C^ G, eq. (40)), by the
+//    argument principle (design/nyquist.hpp): no encirclement of -1 (value: +-min |1 + L(j w)|).
 #pragma once
 #include <complex>
 #include <string>
@@ -50,7 +54,7 @@ struct FoSpec {
 };
 
 struct FeasibilityTest {
-    std::string name;    // "delay_limit", "low_frequency", "rhfc", "pd_stability"
+    std::string name;    // "delay_limit", "low_frequency", "rhfc", "pd_stability", "nyquist"
     bool pass = false;
     double value = 0.0;  // the tested quantity (e.g. phi_mn, K_in, worst slope)
     double bound = 0.0;  // its limit
@@ -84,19 +88,25 @@ struct FoDesign {
 // design whose tests say why.
 FoDesign tune_fo(FoKind kind, const GharabPlant& plant, const FoSpec& spec);
 
-// Numerical RHFC (eq. (22)/(35)): the largest relative step of
-// m(w) = |C_n(jw)| / |1 + (jw)^lambda| over `points` log-spaced frequencies on
-// [w_cn, 1000 w_cn]; the RHFC holds when it is < 0 (strictly decreasing).
-double rhfc_worst_slope(FoKind kind, double wcn, double lambda, double order, double Kpn, double Kx,
-                        int points = 4000);
+// RHFC (eq. (22)/(35)) margin: the largest slope d ln m / d ln w of
+// m(w) = |C_n(jw)| / |1 + (jw)^lambda| on [w_cn, max(1000 w_cn, 1000)] (beyond, m falls like
+// w^-lambda or w^(mu - lambda)), from the analytic slope, every local maximum bracketed on a log
+// grid (400 points per decade, 20000 on [0.8, 1.25] around the plant resonance) and refined by
+// golden section to 1e-12 in ln w; +inf where m has a zero or a pole. The RHFC holds when it is < 0.
+double rhfc_max_slope(FoKind kind, double wcn, double lambda, double order, double Kpn, double Kx);
 
 // Exact upper bound of the PI low-frequency condition (18): pi - arg(1 + (j w_cn)^lambda).
 double lf_phimn_bound(double wcn, double lambda);
 
-// Crossover intervals [lo, hi] (rad/s, real units) where the design at phase
-// margin spec.phim and order spec.order is feasible, searched on [w_lo, w_hi]
-// with a log grid of `grid` points and every boundary refined by bisection to
-// 1e-9 relative. spec.wc is ignored.
+// Relative tolerance of the band edges of feasible_bands.
+constexpr double kEdgeTol = 1e-10;
+
+// Crossover intervals [lo, hi] (rad/s, real units) where the design at phase margin spec.phim and
+// order spec.order is feasible (every test passes), searched on [w_lo, w_hi]: a log grid of `grid`
+// points brackets each change of verdict, and the edge is refined to kEdgeTol relative as the root
+// of the switching test's continuous margin (K_in for (18), K_pn + 1 for the PD condition, minus the
+// RHFC slope) by TOMS 748 (Boost.Math), or by bisection on the verdict (the Nyquist test). A band
+// narrower than the grid step can be missed. spec.wc is ignored.
 std::vector<std::pair<double, double>> feasible_bands(FoKind kind, const GharabPlant& plant, const FoSpec& spec,
                                                       double w_lo, double w_hi, int grid = 600);
 

@@ -9,6 +9,8 @@
 // printed by the paper. The numerator damping equals zeta(z1) exactly (notes 002 sec. 6.4).
 #pragma once
 #include <complex>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "fracdesign/models/lti.hpp"
@@ -35,25 +37,67 @@ std::complex<double> modal_P(const CollocatedModes& m, double w);
 // Modal realisation: states [q_i, q_i'] per mode, q_i'' + 2 zeta_i a_i q_i' + a_i^2 q_i = u, y = sum k_i q_i.
 StateSpace modal_state_space(const CollocatedModes& m);
 
+constexpr double kFeliuM2Min = 0.01, kFeliuM2Max = 0.23, kFeliuM2Nominal = 0.12;  // lb (Sec. 5.1)
+constexpr double kFeliuEps = 0.0071;  // inner-loop time constant of G_m (41) [s]
+
+// One frozen plant of the family: the modal data of P (42)/(45)/(46), the inner loop G_m (41) and
+// the tip transfer G_2 (39), G_2(s) = (g2_s2 s^2 + g2_0) / ((s^2 + 2 zeta1 a1 s + a1^2)(s^2 + 2 zeta2 a2 s + a2^2))
+// (undamped numerator, damped denominators: notes 002 AMBIG 14; G_2(0) = 1 for the undamped plant).
 struct CollocatedPlant {
-    double m2_lb;              // tip mass [lb]
+    double m2 = 0;             // tip mass, in the unit of its CollocatedArm (lb for the printed form, kg otherwise)
     double a1, z1, a2;         // undamped resonances / anti-resonance [rad/s]
     double b, k1, k2;          // gain and partial-fraction residues (k1 + k2 = b)
     double zeta1, zeta2, xi1;  // Rayleigh damping of a1, a2 and of the zero z1 (44)
+    double eps = kFeliuEps;    // inner position loop G_m = 1/(1 + eps s)^2 (41) [s]
+    double g2_s2 = 0, g2_0 = 0;  // numerator of G_2 (39)
 };
 
-constexpr double kFeliuM2Min = 0.01, kFeliuM2Max = 0.23, kFeliuM2Nominal = 0.12;  // lb
+// A bad arm parameter: `field` is the document path (e.g. "link.EI"), what() names field, value and range.
+struct CollocatedArmError : std::invalid_argument {
+    CollocatedArmError(const std::string& field, const std::string& problem);
+    std::string field, problem;
+};
 
-// Closed forms of notes 002 sec. 6.3: c2 = 1455.2 + 21.83/m2, c0 = 6948.4/m2,
-// a_{1,2}^2 = (c2 -+ sqrt(c2^2 - 4 c0))/2, z1^2 = 636.65 + 19.1/m2, b = 4.11.
+// The two-lumped-mass arm family over the tip mass m2 (the uncertain parameter of seed 002 Sec. 5).
+//  - Printed: the paper's robot, the coefficients of (38)-(42) as printed (m2 in lb inside them).
+//  - Physical: any arm of the same structure (ref. [21], Sec. 5.1): a massless Euler-Bernoulli link of
+//    length L and flexural rigidity EI clamped to the hub, point masses m1 at x1 (0 < x1 < L) and m2 at
+//    the tip on pinned joints (no moments at the masses), moment sensor at the base. With the flexibility
+//    of the clamped link f11 = x1^3/(3EI), f12 = x1^2 (3L - x1)/(6EI), f22 = L^3/(3EI), K = F^-1, the
+//    angles theta_i of the masses obey M theta'' + K' (theta - theta_m 1) = 0, M = diag(m1 x1^2, m2 L^2),
+//    K' = X K X, X = diag(x1, L); the base moment is Gamma = 1' K' (theta_m 1 - theta), so
+//      Gamma_c/theta_m = g s^2 P(s),  P(s) = 1' K' (M s^2 + K')^-1 M 1,  theta_2/theta_m = [(M s^2 + K')^-1 K' 1]_2,
+//    with g the sensor reading per N m (the paper's Gamma_c unit is not printed). For x1 = L/2 this gives
+//    the printed structure of (38)-(40) exactly (a1^2 a2^2 = 7 c^2/(m1 m2), z1^2 = 7c/m1 + 1.75c/m2 with
+//    c = 48 EI/(7 L^3)).
+// Both forms: G_m = 1/(1 + eps s)^2 (41) and Rayleigh damping zeta(w) = (rayleigh_a/w + rayleigh_b w)/2 (44).
+struct CollocatedArm {
+    enum class Form { Printed, Physical };
+    Form form = Form::Printed;
+    double L = 0, EI = 0, m1 = 0, x1 = 0;  // Physical only: m, N m^2, kg, m
+    double moment_gain = 1.0;             // Physical only: Gamma_c reading per N m (> 0)
+    double eps = kFeliuEps;               // s, in [0, 1]
+    double rayleigh_a = 0.059, rayleigh_b = 2.9e-5;  // 1/s and s, >= 0 (0, 0: undamped)
+    double m2_nominal = kFeliuM2Nominal, m2_min = kFeliuM2Min, m2_max = kFeliuM2Max;  // lb (Printed) or kg (Physical)
+    // Throws CollocatedArmError for the first bad field (finite, > 0 / >= 0, x1 < L,
+    // m2_min <= m2_nominal <= m2_max).
+    void validate() const;
+    // The frozen plant at tip mass m2 (> 0; outside [m2_min, m2_max] is allowed, the range is the design's).
+    CollocatedPlant plant(double m2) const;
+    double zeta(double w) const { return 0.5 * (rayleigh_a / w + rayleigh_b * w); }
+    const char* mass_unit() const { return form == Form::Printed ? "lb" : "kg"; }
+};
+
+// The paper's robot (Sec. 5.1): the printed form, m2 in [0.01, 0.23] lb, nominal 0.12 lb.
+CollocatedArm feliu_robot_arm();
+
+// feliu_robot_arm().plant(m2_lb): the closed forms of notes 002 sec. 6.3, c2 = 1455.2 + 21.83/m2,
+// c0 = 6948.4/m2, a_{1,2}^2 = (c2 -+ sqrt(c2^2 - 4 c0))/2, z1^2 = 636.65 + 19.1/m2, b = 4.11.
 // Throws std::invalid_argument if m2 is not finite and > 0.
 CollocatedPlant collocated_plant(double m2_lb);
 
 // The two modes of the robot plant (a1, a2; k1, k2; zeta1, zeta2 or 0 when undamped).
 CollocatedModes collocated_modes(const CollocatedPlant& p, bool damped = true);
-
-// Rayleigh damping law (44).
-double feliu_rayleigh_zeta(double w);
 
 // P(j w) of (46) (damped = true) or (45) (undamped).
 std::complex<double> collocated_P(const CollocatedPlant& p, double w, bool damped = true);
