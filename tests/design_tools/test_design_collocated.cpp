@@ -6,6 +6,13 @@
 #include <vector>
 
 #include "fracdesign/design/collocated.hpp"
+#include "fracdesign/model_json.hpp"
+#include "run_command.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
 
 using namespace fracdesign;
 using namespace fracdesign::design;
@@ -171,4 +178,84 @@ TEST(DesignCollocated, GlobalPrefilterSearchFindsThePaperBandWithoutAStart)
     EXPECT_LT(flat_band([&](double w) { return closed_loop_tip(L, off, p, w); }), 7.0) << "not a knife edge any more?";
     EXPECT_THROW(optimise_prefilter(L, p, 1.0, 0.0), std::invalid_argument);
     EXPECT_THROW(optimise_prefilter(L, p, 0.0, 0.3), std::invalid_argument);
+}
+
+namespace {
+std::string run_cli(const std::string& args, int* status)
+{
+    return run_command(std::string(FRACDESIGN_EXE) + " " + args, status);
+}
+}  // namespace
+
+TEST(DesignCollocated, CliDesignsForAnArmThePaperDoesNotPrintFromItsDocument)
+{
+    // A two-mass arm of other masses, stiffness, sensor position, inner loop and damping; the test
+    // derives the specifications from the arm and checks the design with its own loop evaluation.
+    CollocatedArm arm;
+    arm.form = CollocatedArm::Form::Physical;
+    arm.L = 0.8, arm.EI = 2.5, arm.m1 = 0.3, arm.x1 = 0.35, arm.moment_gain = 1.0;
+    arm.eps = 0.004, arm.rayleigh_a = 0.08, arm.rayleigh_b = 4e-5;
+    arm.m2_nominal = 0.2, arm.m2_min = 0.05, arm.m2_max = 0.5;
+    const std::string dir = std::string(FRAC_BINARY_DIR) + "/test_design_collocated_tmp";
+    std::system(("mkdir -p " + dir).c_str());
+    const std::string file = dir + "/arm_c.json";
+    write_model_file(file, CollocatedModelSpec{arm, true});
+    const CollocatedPlant p = arm.plant(arm.m2_nominal);
+    struct Spec {
+        double phi0, wc0;
+        int kase;
+    };
+    for (const Spec sp : {Spec{65.0, std::sqrt(p.a1 * p.z1), 1}, Spec{40.0, 0.45 * p.a1, 2}}) {
+        int st = -1;
+        const std::string out = run_cli("tune collocated --model " + file + " --phi0 " + std::to_string(sp.phi0) +
+                                            " --wc0 " + std::to_string(sp.wc0) + " --exact --json",
+                                        &st);
+        ASSERT_EQ(st, 0) << out;
+        const nlohmann::json j = nlohmann::json::parse(out);
+        EXPECT_EQ(j["theorem_case"].get<int>(), sp.kase);
+        const double Kc = j["controller"]["Kc"].get<double>(), alpha = j["controller"]["alpha"].get<double>();
+        EXPECT_NEAR(alpha, sp.kase == 1 ? sp.phi0 / 90.0 : 2.0 - sp.phi0 / 90.0, 1e-12);
+        // exact controller (47): L = Kc s^alpha P(s), the inner loop cancelled
+        auto L = [&](const CollocatedPlant& q, std::complex<double> s, bool damped) {
+            const double z1 = damped ? q.zeta1 : 0.0, z2 = damped ? q.zeta2 : 0.0;
+            return Kc * std::pow(s, alpha) *
+                   (q.k1 / (s * s + 2.0 * z1 * q.a1 * s + q.a1 * q.a1) + q.k2 / (s * s + 2.0 * z2 * q.a2 * s + q.a2 * q.a2));
+        };
+        const double wc1 = j["nominal_loop"]["wc1"].get<double>();
+        EXPECT_NEAR(wc1, sp.wc0, 1e-6 * sp.wc0);
+        EXPECT_NEAR(std::abs(L(p, {0, wc1}, true)), 1.0, 1e-9);
+        EXPECT_NEAR(j["nominal_loop"]["pm1_deg"].get<double>(), pm_of(L(p, {0, wc1}, true)), 1e-6);
+        EXPECT_NEAR(j["nominal_loop"]["pm1_deg"].get<double>(), sp.kase == 1 ? sp.phi0 : -sp.phi0, 1.0);
+        // closed-loop stable at the nominal and at both extreme tip masses (argument principle)
+        for (double m2 : {arm.m2_min, arm.m2_nominal, arm.m2_max}) {
+            const CollocatedPlant q = arm.plant(m2);
+            const NyquistResult n =
+                nyquist_stability([&](std::complex<double> s) { return L(q, s, true); }, 1e-6 * q.a1, 1e7 * q.a2);
+            EXPECT_TRUE(n.stable) << m2 << ": " << n.detail;
+        }
+        EXPECT_TRUE(j["nominal_loop"]["nyquist"]["stable"].get<bool>());
+        // the robust range ends are mode-1 crossovers of the undamped loop at the extreme masses
+        const double lo = j["crossover_range"]["wc"][0].get<double>(), hi = j["crossover_range"]["wc"][1].get<double>();
+        EXPECT_LT(lo, sp.wc0);
+        EXPECT_GT(hi, sp.wc0);
+        for (double e : {lo, hi}) {
+            double best = 1e9;
+            for (double m2 : {arm.m2_min, arm.m2_max})
+                best = std::min(best, std::fabs(std::abs(L(arm.plant(m2), {0, e}, false)) - 1.0));
+            EXPECT_LT(best, 1e-8) << e;
+        }
+    }
+    // bad inputs: a bad field in the document (exit 1, one line naming it, nothing on stdout), a mass
+    // outside the document's range (usage error, exit 2)
+    nlohmann::json bad = model_to_json(CollocatedModelSpec{arm, true});
+    bad["masses"]["x1"] = 1.2;
+    std::ofstream(dir + "/bad.json") << bad.dump();
+    int st = -1;
+    const std::string err = run_cli("tune collocated --model " + dir + "/bad.json --phi0 60 --wc0 5 --json", &st);
+    EXPECT_EQ(st, 1);
+    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+    EXPECT_NE(err.find("field 'masses.x1': is 1.2, must be in (0, link.L) = (0, 0.8) m"), std::string::npos) << err;
+    const std::string e2 = run_cli("tune collocated --model " + file + " --phi0 60 --wc0 5 --m2 0.9", &st);
+    EXPECT_EQ(st, 2) << e2;
+    EXPECT_NE(e2.find("masses.m2"), std::string::npos) << e2;
 }

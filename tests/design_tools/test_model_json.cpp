@@ -202,3 +202,59 @@ TEST(ModelJson, cli_refuses_bad_parameters_with_usage_errors)
     EXPECT_EQ(rc("foprocess --T nan"), 2);               // not a finite number
     EXPECT_EQ(rc("arm --shifts 16,16,16"), 1);           // Krylov basis loses rank
 }
+
+namespace {
+// A physical collocated arm the paper does not print (docs/model_format.md, kind collocated).
+json physical_collocated()
+{
+    return json::parse(R"({"schema": "frac.model", "version": 1, "kind": "collocated", "units": "SI",
+        "link": {"L": 0.8, "EI": 2.5},
+        "masses": {"m1": 0.3, "x1": 0.35, "m2": 0.2, "m2_range": [0.05, 0.5]},
+        "moment_gain": 1.0, "inner_loop": {"eps": 0.004},
+        "damping": {"rayleigh_a": 0.08, "rayleigh_b": 4e-5}, "damped": true})");
+}
+}  // namespace
+
+TEST(ModelJson, physical_collocated_arm_round_trips_and_each_bad_field_is_named_with_value_and_range)
+{
+    const ModelSpec m = model_from_json(physical_collocated());
+    const auto& c = std::get<CollocatedModelSpec>(m);
+    EXPECT_EQ(c.arm.form, CollocatedArm::Form::Physical);
+    EXPECT_EQ(c.arm.x1, 0.35);
+    EXPECT_EQ(c.arm.eps, 0.004);
+    EXPECT_EQ(model_to_json(model_from_json(model_to_json(m))), model_to_json(m));
+    EXPECT_EQ(model_state_space(m).nx(), 4);
+    // the paper's form still reads, with its printed range by default
+    const auto& p = std::get<CollocatedModelSpec>(
+        model_from_json(json{{"schema", "frac.model"}, {"version", 1}, {"kind", "collocated"}, {"m2_lb", 0.05}}));
+    EXPECT_EQ(p.arm.form, CollocatedArm::Form::Printed);
+    EXPECT_EQ(p.arm.m2_min, 0.01);
+    struct Bad {
+        const char* pointer;
+        json value;
+        const char* expect;
+    };
+    const Bad bad[] = {
+        {"/link/EI", -1.0, "field 'link.EI': is -1, must be finite and > 0 (N m^2)"},
+        {"/link/L", "long", "field 'link.L': must be a number"},
+        {"/masses/x1", 0.8, "field 'masses.x1': is 0.8, must be in (0, link.L) = (0, 0.8) m"},
+        {"/masses/m2", 0.6, "field 'masses.m2': is 0.6, must be inside masses.m2_range = [0.05, 0.5] kg"},
+        {"/masses/m2_range", json::array({0.05}), "field 'masses.m2_range': must be an array [lo, hi]"},
+        {"/inner_loop/eps", -0.1, "field 'inner_loop.eps': is -0.1, must be in [0, 1] s"},
+        {"/damping/rayleigh_a", -0.5, "field 'damping.rayleigh_a': is -0.5, must be finite and >= 0 (1/s)"},
+        {"/moment_gain", 0.0, "field 'moment_gain': is 0, must be finite and > 0"},
+        {"/m2_lb", 0.1, "field 'm2_lb': is the printed robot's tip mass"},
+    };
+    for (const Bad& b : bad) {
+        json j = physical_collocated();
+        j[json::json_pointer(b.pointer)] = b.value;
+        const std::string msg = error_of(j);
+        EXPECT_NE(msg.find(b.expect), std::string::npos) << b.pointer << ": " << msg;
+        EXPECT_EQ(msg.find('\n'), std::string::npos);
+    }
+    json j = physical_collocated();
+    j.erase("masses");
+    EXPECT_NE(error_of(j).find("field 'masses': is missing"), std::string::npos) << error_of(j);
+    j.erase("link");
+    EXPECT_NE(error_of(j).find("field 'masses': is missing (give link and masses, or m2_lb"), std::string::npos);
+}

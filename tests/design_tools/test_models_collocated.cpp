@@ -7,6 +7,8 @@
 #include "fracdesign/models/collocated.hpp"
 #include "fracdesign/models/foprocess.hpp"
 
+#include <Eigen/Dense>
+
 using namespace fracdesign;
 
 TEST(Collocated, nominal_modal_data_match_the_paper)
@@ -109,4 +111,120 @@ TEST(CollocatedModes, pzi_product_form_has_positive_residues_and_equal_response)
     CollocatedModes bad = f;
     bad.zeta[2] = -0.1;
     EXPECT_THROW(modal_state_space(bad), std::invalid_argument);
+}
+
+namespace {
+constexpr double kLb = 0.45359237;  // kg per lb
+
+// An arm the paper does not print (SI): a 0.8 m link of EI 2.5 N m^2, 0.3 kg at 0.35 m, tip 0.2 kg.
+CollocatedArm unprinted_arm()
+{
+    CollocatedArm a;
+    a.form = CollocatedArm::Form::Physical;
+    a.L = 0.8, a.EI = 2.5, a.m1 = 0.3, a.x1 = 0.35, a.moment_gain = 1.0;
+    a.eps = 0.004, a.rayleigh_a = 0.08, a.rayleigh_b = 4e-5;
+    a.m2_nominal = 0.2, a.m2_min = 0.05, a.m2_max = 0.5;
+    return a;
+}
+
+// Gamma/theta_m and theta_2/theta_m at s = j w by a direct solve of M theta'' + K'(theta - theta_m 1) = 0
+// with K' = X F^-1 X from the clamped-link flexibility, independent of the closed forms of the model.
+std::pair<std::complex<double>, std::complex<double>> direct_response(const CollocatedArm& a, double m2, double w)
+{
+    Eigen::Matrix2d F;
+    F << std::pow(a.x1, 3) / (3 * a.EI), a.x1 * a.x1 * (3 * a.L - a.x1) / (6 * a.EI),
+        a.x1 * a.x1 * (3 * a.L - a.x1) / (6 * a.EI), std::pow(a.L, 3) / (3 * a.EI);
+    const Eigen::Matrix2d X = Eigen::Vector2d(a.x1, a.L).asDiagonal();
+    const Eigen::Matrix2d Kp = X * F.inverse() * X;
+    const Eigen::Matrix2d M = Eigen::Vector2d(a.m1 * a.x1 * a.x1, m2 * a.L * a.L).asDiagonal();
+    const std::complex<double> s(0, w);
+    const Eigen::Matrix2cd A = M.cast<std::complex<double>>() * s * s + Kp.cast<std::complex<double>>();
+    const Eigen::Vector2cd th = A.lu().solve((Kp * Eigen::Vector2d::Ones()).cast<std::complex<double>>());
+    const std::complex<double> gamma = a.moment_gain * (Kp.cast<std::complex<double>>() * (Eigen::Vector2cd::Ones() - th)).sum();
+    return {gamma, th(1)};
+}
+}  // namespace
+
+TEST(CollocatedArm, PhysicalFormWithTheRobotsDataGivesThePrintedCoefficients)
+{
+    // Middle mass at L/2, m1 = 0.12 lb: the printed 1455.2 = 16 c/m1 fixes c = 48 EI/(7 L^3), hence EI;
+    // b = g c L^2 fixes the (unprinted) moment gain. Then a1, z1, a2 and G_2 must follow for every m2.
+    CollocatedArm a;
+    a.form = CollocatedArm::Form::Physical;
+    a.L = 12 * 0.0254;
+    a.x1 = a.L / 2;
+    a.m1 = 0.12 * kLb;
+    const double c = 1455.2 * a.m1 / 16.0;
+    a.EI = 7.0 * c * std::pow(a.L, 3) / 48.0;
+    a.moment_gain = 4.11 / (c * a.L * a.L);
+    a.m2_nominal = 0.12 * kLb, a.m2_min = 0.01 * kLb, a.m2_max = 0.23 * kLb;
+    a.validate();
+    for (double m2 : {0.01, 0.12, 0.23}) {
+        const CollocatedPlant ph = a.plant(m2 * kLb), pr = collocated_plant(m2);
+        EXPECT_NEAR(ph.a1, pr.a1, 1e-3 * pr.a1) << m2;
+        EXPECT_NEAR(ph.z1, pr.z1, 1e-3 * pr.z1) << m2;
+        EXPECT_NEAR(ph.a2, pr.a2, 1e-3 * pr.a2) << m2;
+        EXPECT_NEAR(ph.b, pr.b, 1e-12);
+        EXPECT_NEAR(ph.g2_s2 / ph.g2_0, pr.g2_s2 / pr.g2_0, 2e-3 * std::fabs(pr.g2_s2 / pr.g2_0)) << m2;  // zero 1273.3
+    }
+}
+
+TEST(CollocatedArm, UnprintedArmMatchesADirectSolveOfTheLumpedMassEquations)
+{
+    const CollocatedArm a = unprinted_arm();
+    a.validate();
+    for (double m2 : {a.m2_min, a.m2_nominal, a.m2_max}) {
+        const CollocatedPlant p = a.plant(m2);
+        EXPECT_LT(p.a1, p.z1);
+        EXPECT_LT(p.z1, p.a2);
+        EXPECT_GT(p.k1, 0.0);
+        EXPECT_GT(p.k2, 0.0);
+        EXPECT_NEAR(p.g2_0 / (p.a1 * p.a1 * p.a2 * p.a2), 1.0, 1e-12);  // G_2(0) = 1: rigid rotation
+        EXPECT_EQ(p.eps, a.eps);
+        EXPECT_NEAR(p.zeta1, 0.5 * (a.rayleigh_a / p.a1 + a.rayleigh_b * p.a1), 1e-15);
+        for (double w : {0.3 * p.a1, 1.7 * p.a1, 0.5 * (p.z1 + p.a2), 3.0 * p.a2}) {
+            const auto [gamma, th2] = direct_response(a, m2, w);
+            const std::complex<double> s(0, w);
+            const std::complex<double> g = s * s * collocated_P(p, w, false);
+            EXPECT_LT(std::abs(g - gamma), 1e-9 * std::abs(gamma)) << m2 << " " << w;
+            const std::complex<double> g2 =
+                (p.g2_s2 * s * s + p.g2_0) / ((s * s + p.a1 * p.a1) * (s * s + p.a2 * p.a2));
+            EXPECT_LT(std::abs(g2 - th2), 1e-9 * std::abs(th2)) << m2 << " " << w;
+        }
+    }
+}
+
+TEST(CollocatedArm, EachBadFieldIsRefusedNamingFieldValueAndRange)
+{
+    struct Case {
+        const char* field;
+        void (*spoil)(CollocatedArm&);
+        const char* value;
+    };
+    const Case cases[] = {
+        {"link.L", [](CollocatedArm& a) { a.L = -1; }, "-1"},
+        {"link.EI", [](CollocatedArm& a) { a.EI = 0; }, "0"},
+        {"masses.m1", [](CollocatedArm& a) { a.m1 = NAN; }, "nan"},
+        {"masses.x1", [](CollocatedArm& a) { a.x1 = 0.9; }, "0.9"},
+        {"moment_gain", [](CollocatedArm& a) { a.moment_gain = -2; }, "-2"},
+        {"masses.m2", [](CollocatedArm& a) { a.m2_nominal = 0.7; }, "0.7"},
+        {"masses.m2_range[1]", [](CollocatedArm& a) { a.m2_max = 0.01; }, "0.01"},
+        {"inner_loop.eps", [](CollocatedArm& a) { a.eps = 2.0; }, "2"},
+        {"damping.rayleigh_b", [](CollocatedArm& a) { a.rayleigh_b = -1e-5; }, "-1e-05"},
+    };
+    for (const Case& c : cases) {
+        CollocatedArm a = unprinted_arm();
+        c.spoil(a);
+        try {
+            a.validate();
+            ADD_FAILURE() << c.field << " accepted";
+        } catch (const CollocatedArmError& e) {
+            EXPECT_EQ(e.field, c.field);
+            const std::string m = e.what();
+            EXPECT_NE(m.find(std::string("is ") + c.value + ", must be"), std::string::npos) << m;
+        }
+    }
+    CollocatedArm printed = feliu_robot_arm();
+    printed.m2_nominal = 0.5;  // outside the printed range [0.01, 0.23] lb
+    EXPECT_THROW(printed.validate(), CollocatedArmError);
 }

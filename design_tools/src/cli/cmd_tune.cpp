@@ -98,6 +98,7 @@ CollocatedArm collocated_arm(const Args& args)
         if (!c)
             throw ModelFormatError("kind", "is \"" + model_kind(m) + "\"; tune collocated needs a \"collocated\" model");
         arm = c->arm;
+        if (!c->damped) arm.rayleigh_a = arm.rayleigh_b = 0.0;  // "damped": false designs on the undamped plant
     }
     arm.m2_nominal = args.num("m2", arm.m2_nominal);
     arm.m2_min = args.num("m2-lo", arm.m2_min);
