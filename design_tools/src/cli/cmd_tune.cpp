@@ -186,7 +186,7 @@ int run_collocated(const Args& args)
                     phi0_deg);
     std::printf("  all crossovers:");
     for (const auto& x : all) std::printf(" %.4f (%.2f deg)", x.w, x.pm_deg);
-    std::printf("\n  closed loop (nominal, damped): %s\n", stab.detail.c_str());
+    std::printf("\n  closed loop (nominal, %s): %s\n", nominal.zeta1 > 0.0 ? "damped" : "undamped", stab.detail.c_str());
     std::printf("  robust crossover range over m2 in [%g, %g] %s: [%.4f, %.4f] rad/s\n", arm.m2_min, arm.m2_max, unit,
                 range.first, range.second);
     if (args.has("prefilter"))
@@ -214,23 +214,32 @@ CommandRegistrar reg({"tune", "fractional controller tuning (seed 001 FO-PI/FO-P
                       "T = 1/w0^2 as in eq. (51)). Tunes C = Kp + Ki s^-alpha (fopi, eq. (15)-(16)) or\n"
                       "C^ = Kp + Kd s^mu with positive feedback delta = 1/K (fopd, eq. (31)-(34), erratum E3)\n"
                       "for crossover WC (rad/s) and phase margin PHIM (rad), normalised with\n"
-                      "tau_n = tau/T^(1/lambda) (erratum E1). Reports the delay limit (17), the exact\n"
-                      "low-frequency condition (18) (PI), the numerical RHFC (22)/(35), the PD stability\n"
-                      "condition K_p + delta > 0, and the feasible crossover band at PHIM (searched on\n"
-                      "w_cn in [0.01, 10] unless --band-lo/--band-hi, rad/s, are given).\n"
+                      "tau_n = tau/T^(1/lambda) (erratum E1). Reports the delay limit (17) (phi_m > 0), the\n"
+                      "exact low-frequency condition (18) (PI), the RHFC (22)/(35) from the largest slope of\n"
+                      "|L| beyond w_c, the PD stability condition K_p + delta > 0, the closed-loop verdict of\n"
+                      "the argument principle on the loop with the delay (nyquist), and the feasible crossover\n"
+                      "bands at PHIM (searched on w_cn in [0.01, 10] unless --band-lo/--band-hi, rad/s, are\n"
+                      "given; edges refined to 1e-10 relative).\n"
                       "Exit status 1 when the specification is infeasible (reason and band on stderr).\n\n"
-                      "       fracdesign tune collocated --phi0 DEG --wc0 W [--m2 LB] [--alpha A]\n"
-                      "                                  [--m2-lo LB --m2-hi LB] [--exact] [--prefilter]\n"
+                      "       fracdesign tune collocated --phi0 DEG --wc0 W [--model PLANT.json] [--m2 M]\n"
+                      "                                  [--alpha A] [--m2-lo M --m2-hi M] [--exact] [--prefilter]\n"
                       "                                  [--prefilter-start FN,FD,BETA] [--json]\n\n"
-                      "Seed 002 two-mass arm, collocated base-moment loop: alpha = 2 phi0/pi (a1 < w_c0 < z1)\n"
-                      "or 2 - 2 phi0/pi (w_c0 < a1), Kc = 1/(w_c0^alpha |P(j w_c0)|) at the nominal tip mass\n"
-                      "(default 0.12 lb); --alpha overrides alpha (the paper rounds to 0.8); --exact keeps\n"
-                      "(1 + 0.0071 s)^2 instead of 1 + 0.0142 s. Reports the nominal modal crossovers and\n"
-                      "margins and the crossover range over m2 (default [0.01, 0.23] lb); --prefilter\n"
-                      "optimises F = (1 + fn s^beta)/(1 + fd s) for the widest +-0.3 dB band of |H|\n"
-                      "(global search on the minimax form of the band, notes 002 section 8;\n"
-                      "--prefilter-start fn,fd,beta adds a starting point).\n"
-                      "A w_c0 not covered by Theorem 5 is reported infeasible with the ranges (exit 1).\n",
+                      "Seed 002 collocated base-moment loop of a two-lumped-mass arm: the paper's robot, or the\n"
+                      "arm of --model PLANT.json (a frac.model document of kind \"collocated\": m2_lb for the\n"
+                      "printed robot, or link {L, EI}, masses {m1, x1, m2, m2_range}, moment_gain, inner_loop\n"
+                      "{eps}, damping {rayleigh_a, rayleigh_b}; docs/model_format.md). --m2 sets the nominal tip\n"
+                      "mass and --m2-lo/--m2-hi its range (lb for the robot, kg for a physical arm; they must\n"
+                      "hold the nominal mass). alpha = 2 phi0/pi when a1 < w_c0 < z1 (Theorem 5 case 1) or\n"
+                      "2 - 2 phi0/pi when w_c0 < a1 (case 2), Kc = 1/(w_c0^alpha |P(j w_c0)|) at the nominal\n"
+                      "mass; --alpha overrides alpha (the paper rounds to 0.8); --exact keeps (1 + eps s)^2\n"
+                      "instead of 1 + 2 eps s. Reports every crossover of the nominal loop, the two the case\n"
+                      "names (case 1: in (a1, z1) and the highest above a2; case 2: in (0, a1) and in (z1, a2),\n"
+                      "where PM = -phi0 means the crossing is phi0 above -1), the closed-loop verdict of the\n"
+                      "argument principle, and the mode-1 crossover range over the tip masses, searched where\n"
+                      "the case puts it. --prefilter optimises F = (1 + fn s^beta)/(1 + fd s) for the widest\n"
+                      "+-0.3 dB band of |H| (notes 002 section 8; --prefilter-start adds a starting point).\n"
+                      "A w_c0 not covered by Theorem 5 is reported infeasible with the ranges (exit 1); a bad\n"
+                      "document field exits 1 naming the field, its value and the allowed range.\n",
                       run_tune});
 
 }  // namespace

@@ -7,6 +7,8 @@
 // damped with the Rayleigh law zeta(w) = (0.059/w + 2.9e-5 w)/2 (44) on every mode (46). The tip mass m2 is
 // in lb inside the printed formulas (m2 in [0.01, 0.23] lb, nominal 0.12 lb); Gamma_c units are not
 // printed by the paper. The numerator damping equals zeta(z1) exactly (notes 002 sec. 6.4).
+// Those are the paper's robot (CollocatedArm::Form::Printed); CollocatedArm::Form::Physical derives the
+// same structure for any masses, link stiffness, middle-mass position, inner loop and damping law.
 #pragma once
 #include <complex>
 #include <stdexcept>
