@@ -136,6 +136,16 @@ TEST(DesignCollocated, CrossoversAreWhereTheTheoremCasePutsThemOnThePapersRobot)
     expect_crossovers_where_the_case_puts_them(arm, p);
 }
 
+TEST(DesignCollocated, CrossoversAreWhereTheTheoremCasePutsThemOnAnArmThePaperDoesNotPrint)
+{
+    CollocatedArm arm;
+    arm.form = CollocatedArm::Form::Physical;
+    arm.L = 1.1, arm.EI = 6.0, arm.m1 = 0.5, arm.x1 = 0.7, arm.moment_gain = 3.0;
+    arm.eps = 0.01, arm.rayleigh_a = 0.03, arm.rayleigh_b = 1e-4;
+    arm.m2_nominal = 0.4, arm.m2_min = 0.1, arm.m2_max = 1.0;
+    expect_crossovers_where_the_case_puts_them(arm, arm.plant(arm.m2_nominal));
+}
+
 TEST(DesignCollocated, UncoveredCrossoverIsReportedWithTheAllowedRanges)
 {
     try {
