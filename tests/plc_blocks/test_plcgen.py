@@ -38,7 +38,8 @@ TYPE
 		modeHOLD := 7
 	);
 	Counts : UDINT;
-	Real : {C double "math.h"}; (*C type*)
+	Real : LREAL; (*C: double "math.h"; C type*)
+	ObjStore : ARRAY[0..1] OF LREAL; (*C: two_words "obj.h"; storage*)
 END_TYPE
 """
 VAR = """VAR CONSTANT
@@ -64,6 +65,7 @@ FUN = """FUNCTION_BLOCK Gain (*a gain*)
 	VAR
 		Acc : Real;
 		pTab : REFERENCE TO LREAL;
+		Obj : ObjStore;
 	END_VAR
 END_FUNCTION_BLOCK
 """
@@ -74,21 +76,36 @@ class Lib:
         self.dir = tempfile.mkdtemp(prefix="plcgen")
         files = {"ANSIC.lby": LBY, "Lib.typ": TYP, "Lib.var": VAR, "Lib.fun": FUN,
                  "Gain.c": "/* body */\n"}
+        self.inc = tempfile.mkdtemp(prefix="plcgen_inc")
+        with open(os.path.join(self.inc, "obj.h"), "w") as fh:
+            fh.write(over.pop("obj_h", "typedef struct two_words { double a; void *p; } two_words;\n"))
         files.update(over)
         for name, text in files.items():
             if text is not None:
                 with open(os.path.join(self.dir, name), "w") as fh:
                     fh.write(text)
 
-    def run(self):
+    def run(self, *opts):
         out = os.path.join(self.dir, "out.h")
-        p = subprocess.run([sys.executable, GEN, os.path.join(self.dir, "ANSIC.lby"), out],
+        p = subprocess.run([sys.executable, GEN] + list(opts) + [os.path.join(self.dir, "ANSIC.lby"), out],
                            capture_output=True, text=True)
         header = open(out).read() if p.returncode == 0 else None
         return p.returncode, p.stderr, header
 
+    def compile(self, *flags):
+        """Compiles a translation unit that includes the generated header; returns (rc, stderr)."""
+        src = os.path.join(self.dir, "use.c")
+        with open(src, "w") as fh:
+            fh.write('#include "out.h"\nint main(void) { struct Gain g; g.Y = 0.0f; Gain(&g); return (int)g.Y; }\n'
+                     'void Gain(struct Gain* inst) { inst->Y = inst->U * inst->Parameters.K; }\n')
+        p = subprocess.run(["cc", "-std=c89", "-pedantic", "-Wall", "-Wextra", "-Werror", "-fsyntax-only",
+                            "-I" + INCLUDE, "-I" + self.dir, "-I" + self.inc] + list(flags) + [src],
+                           capture_output=True, text=True)
+        return p.returncode, p.stderr
+
     def close(self):
         shutil.rmtree(self.dir)
+        shutil.rmtree(self.inc)
 
 
 class GoodDeclarations(unittest.TestCase):
@@ -110,7 +127,7 @@ class GoodDeclarations(unittest.TestCase):
         decls = [l.split(";")[0].strip() for l in body.splitlines() if ";" in l]
         self.assertEqual(decls, ["BOOL Enable", "GainParType Parameters", "REAL U", "plcstring Name[11]",
                                  "REAL Y", "ModeEnum Mode", "Counts N", "Real Acc",
-                                 "LREAL * pTab"])
+                                 "LREAL * pTab", "ObjStore Obj"])
         self.assertIn("void Gain(struct Gain* inst);", self.h)
 
     def test_enum_values_continue_after_explicit_ones(self):
@@ -122,21 +139,65 @@ class GoodDeclarations(unittest.TestCase):
         self.assertIn("#define kPi ((REAL)3.14f)", self.h)
         self.assertIn("#define kOn ((BOOL)1)", self.h)
 
-    def test_c_type_pragma_includes_its_header(self):
+    def test_c_tag_includes_its_header_and_keeps_the_iec_type(self):
         self.assertIn('#include "math.h"', self.h)
-        self.assertIn("typedef double Real;", self.h)
+        self.assertIn("typedef LREAL Real; /* C type */", self.h)
+        self.assertIn("typedef LREAL ObjStore[2]; /* storage */", self.h)
+        self.assertIn("#define ObjStore_C(obj) ((two_words *)(void *)(obj))", self.h)
 
     def test_comments_become_c_comments(self):
         self.assertIn("REAL U; /* input */", self.h)
 
     def test_generated_header_compiles_as_c89(self):
-        src = os.path.join(self.lib.dir, "use.c")
-        with open(src, "w") as fh:
-            fh.write('#include "out.h"\nint main(void) { struct Gain g; g.Y = 0.0f; Gain(&g); return (int)g.Y; }\n'
-                     'void Gain(struct Gain* inst) { inst->Y = inst->U * inst->Parameters.K; }\n')
-        p = subprocess.run(["cc", "-std=c89", "-pedantic", "-Wall", "-Wextra", "-Werror", "-fsyntax-only",
-                            "-I" + INCLUDE, "-I" + self.lib.dir, src], capture_output=True, text=True)
-        self.assertEqual(p.returncode, 0, p.stderr)
+        rc, err = self.lib.compile()
+        self.assertEqual(rc, 0, err)
+
+
+class LayoutChecks(unittest.TestCase):
+    """The compile-time checks of a type naming a C type stop the build when the C type does not fit."""
+
+    def build(self, typ=TYP, obj_h=None, opts=(), flags=()):
+        over = {"Lib.typ": typ}
+        if obj_h is not None:
+            over["obj_h"] = obj_h
+        lib = Lib(**over)
+        try:
+            rc, err, _ = lib.run(*opts)
+            self.assertEqual(rc, 0, err)
+            return lib.compile(*flags)
+        finally:
+            lib.close()
+
+    def test_c_type_larger_than_the_storage_fails_to_compile(self):
+        rc, err = self.build(obj_h="typedef struct two_words { double a, b, c; } two_words;\n")
+        self.assertNotEqual(rc, 0)
+        self.assertIn("ObjStore_holds_two_words", err)
+
+    def test_storage_larger_than_needed_fails_on_the_reference_configuration(self):
+        rc, err = self.build(typ=TYP.replace("ARRAY[0..1] OF LREAL; (*C: two_words", "ARRAY[0..2] OF LREAL; (*C: two_words"))
+        self.assertNotEqual(rc, 0)
+        self.assertIn("ObjStore_least_for_two_words", err)
+
+    def test_c_type_more_aligned_than_the_storage_fails_to_compile(self):
+        rc, err = self.build(typ=TYP.replace("ARRAY[0..1] OF LREAL; (*C: two_words", "ARRAY[0..3] OF UDINT; (*C: two_words"))
+        self.assertNotEqual(rc, 0)
+        self.assertIn("ObjStore_aligned_for_two_words", err)
+
+    def test_elementary_alias_of_another_size_fails_to_compile(self):
+        rc, err = self.build(typ=TYP.replace('Real : LREAL; (*C: double', 'Real : REAL; (*C: double'))
+        self.assertNotEqual(rc, 0)
+        self.assertIn("Real_size_of_double", err)
+
+    def test_configuration_macro_selects_the_alias_type(self):
+        typ = TYP.replace('(*C: double "math.h"; C type*)', '(*C: real_t "obj.h"; C type*)')
+        obj_h = ("#ifdef SINGLE\ntypedef float real_t;\n#else\ntypedef double real_t;\n#endif\n"
+                 "typedef struct two_words { double a; void *p; } two_words;\n")
+        self.assertEqual(self.build(typ=typ, obj_h=obj_h, opts=("--config", "SINGLE:Real=REAL"),
+                                    flags=("-DSINGLE",))[0], 0)
+        self.assertEqual(self.build(typ=typ, obj_h=obj_h, opts=("--config", "SINGLE:Real=REAL"))[0], 0)
+        rc, err = self.build(typ=typ, obj_h=obj_h, flags=("-DSINGLE",))
+        self.assertNotEqual(rc, 0)
+        self.assertIn("Real_size_of_real_t", err)
 
 
 class MalformedDeclarations(unittest.TestCase):
@@ -177,7 +238,7 @@ class MalformedDeclarations(unittest.TestCase):
         self.reject(r"expected 'TO' after REFERENCE", **{"Lib.fun": FUN.replace("REFERENCE TO LREAL", "REFERENCE LREAL")})
 
     def test_unterminated_comment(self):
-        self.reject(r"unterminated comment", **{"Lib.typ": TYP.replace("(*C type*)", "(*C type")})
+        self.reject(r"unterminated comment", **{"Lib.typ": TYP.replace("; storage*)", "; storage")})
 
     def test_inverted_array_range(self):
         self.reject(r"empty array range 3\.\.1", **{"Lib.typ": TYP.replace("1..2, 0..2", "3..1, 0..2")})
@@ -185,8 +246,26 @@ class MalformedDeclarations(unittest.TestCase):
     def test_constant_out_of_range(self):
         self.reject(r"value 70000 out of range of UINT", **{"Lib.var": VAR.replace("16#FFFE", "70000")})
 
-    def test_malformed_c_pragma(self):
-        self.reject(r"malformed C type pragma", **{"Lib.typ": TYP.replace('{C double "math.h"}', "{C double}")})
+    def test_pragma_is_not_iec_and_refused(self):
+        self.reject(r"Lib\.typ:\d+: error: pragma \{C double \"math\.h\"\} in type 'Real' is not IEC 61131-3",
+                    **{"Lib.typ": TYP.replace('LREAL; (*C: double "math.h"; C type*)', '{C double "math.h"};')})
+
+    def test_malformed_c_tag(self):
+        self.reject(r"malformed C type tag in the comment of 'Real'",
+                    **{"Lib.typ": TYP.replace('(*C: double "math.h"; C type*)', '(*C: double math.h C type*)')})
+
+    def test_c_tag_on_a_struct_is_refused(self):
+        self.reject(r"type 'GainParType' names the C type gain_t but is not an alias",
+                    **{"Lib.typ": TYP.replace("(*parameters*)", '(*C: gain_t "g.h"; parameters*)')})
+
+    def test_config_of_an_undeclared_alias_is_refused(self):
+        lib = Lib()
+        try:
+            rc, err, _ = lib.run("--config", "SINGLE:Nope=REAL")
+        finally:
+            lib.close()
+        self.assertEqual(rc, 1)
+        self.assertIn("'Nope' is not a declared alias of an elementary type", err)
 
     def test_block_without_body(self):
         self.reject(r"function block 'Gain' has no body Gain\.c", **{"Gain.c": None,
