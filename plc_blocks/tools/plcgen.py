@@ -3,7 +3,10 @@
 IEC 61131-3 declarations (.typ, .var, .fun), which are the single source of
 truth for every block interface (ARCHITECTURE.md, plc_blocks rules).
 
-usage: plcgen.py [--config MACRO:ALIAS=TYPE]... LIBRARY.lby OUT.h
+usage: plcgen.py [--config MACRO:ALIAS=TYPE]... [--plcopen OUT.xml] LIBRARY.lby OUT.h
+
+--plcopen OUT.xml: also write the PLCopen TC6 XML v2.01 export of the
+library's interface (plcopen.py): data types, function blocks, constants.
 
 --config MACRO:ALIAS=TYPE: a build configuration of the library. With MACRO
 defined, the C header declares the elementary alias ALIAS as TYPE instead of
@@ -156,12 +159,14 @@ class Parser:
         raise self.err("array bound must be an integer or a declared integer constant, found %r" % t.text, t)
 
     def type_ref(self):
-        """Type := Name | ARRAY[lo..hi(, lo..hi)*] OF Name | STRING[n]. Returns (base, dims)."""
+        """Type := Name | ARRAY[lo..hi(, lo..hi)*] OF Name | STRING[n]. Returns (base, dims);
+        self.lows holds the lower bounds of an array's dimensions."""
         t = self.peek()
+        self.lows = []
         if t.text.upper() == "ARRAY":
             self.next()
             self.expect("[")
-            dims = []
+            dims, lows = [], []
             while True:
                 lo_tok = self.peek()
                 lo = self.bound()
@@ -170,6 +175,7 @@ class Parser:
                 if hi < lo:
                     raise self.err("empty array range %d..%d" % (lo, hi), lo_tok)
                 dims.append(hi - lo + 1)
+                lows.append(lo)
                 if self.peek().text == ",":
                     self.next()
                     continue
@@ -179,6 +185,7 @@ class Parser:
             base, inner = self.type_ref()
             if inner:
                 raise self.err("nested ARRAY ... OF ARRAY is not supported; use ARRAY[a..b, c..d]")
+            self.lows = lows
             return base, dims
         if t.text.upper() == "REFERENCE":
             self.next()
@@ -208,7 +215,9 @@ class Parser:
             raise self.err("initial value for '%s' is not supported in %s (the runtime zero-initialises "
                            "instances)" % (name.text, section))
         self.expect(";", "after the declaration of '%s'" % name.text)
-        return {"name": name.text, "type": base, "dims": dims, "doc": self.comment(), "line": name.line}
+        lows = self.lows
+        return {"name": name.text, "type": base, "dims": dims, "lows": lows, "doc": self.comment(),
+                "line": name.line}
 
     # ---- .typ -------------------------------------------------------------
     def parse_typ(self):
@@ -276,7 +285,7 @@ class Parser:
                            % (t.text, name.text), t)
         else:
             base, dims = self.type_ref()
-            decl.update(kind="alias", type=base, dims=dims)
+            decl.update(kind="alias", type=base, dims=dims, lows=self.lows)
             self.lib.types[name.text] = decl
         self.expect(";", "after the declaration of type '%s'" % name.text)
         more = self.comment()
@@ -507,6 +516,7 @@ def generate(lby):
     entries = read_lby(lby)
     files = [f for f, _ in entries]
     lib = Library(os.path.basename(libdir))
+    lib.version = ET.parse(lby).getroot().get("Version", "0")
     order = {".var": 0, ".typ": 1, ".fun": 2}
     decl_files = sorted((f for f in files if os.path.splitext(f)[1] in order),
                         key=lambda f: order[os.path.splitext(f)[1]])
@@ -532,7 +542,19 @@ def generate(lby):
     return lib
 
 
-USAGE = "usage: plcgen.py [--config MACRO:ALIAS=TYPE]... LIBRARY.lby OUT.h\n"
+USAGE = "usage: plcgen.py [--config MACRO:ALIAS=TYPE]... [--plcopen OUT.xml] LIBRARY.lby OUT.h\n"
+
+
+def write_if_changed(path, data):
+    """Writes data (bytes) through a temporary file, so a failure leaves no half-written output."""
+    if os.path.exists(path):
+        with open(path, "rb") as fh:
+            if fh.read() == data:
+                return
+    tmp = path + ".tmp"
+    with open(tmp, "wb") as fh:
+        fh.write(data)
+    os.replace(tmp, path)
 
 
 def parse_configs(lib, specs):
@@ -552,9 +574,12 @@ def parse_configs(lib, specs):
 
 
 def main(argv):
-    args, specs = argv[1:], []
-    while len(args) >= 2 and args[0] == "--config":
-        specs.append(args[1])
+    args, specs, plcopen_out = argv[1:], [], None
+    while len(args) >= 2 and args[0] in ("--config", "--plcopen"):
+        if args[0] == "--config":
+            specs.append(args[1])
+        else:
+            plcopen_out = args[1]
         args = args[2:]
     if len(args) != 2 or args[0].startswith("--"):
         sys.stderr.write(USAGE)
@@ -566,14 +591,10 @@ def main(argv):
     except GenError as e:
         sys.stderr.write("%s\n" % e)
         return 1
-    text = emit(lib, configs)
-    old = None
-    if os.path.exists(argv[2]):
-        with open(argv[2], encoding="utf-8") as fh:
-            old = fh.read()
-    if old != text:
-        with open(argv[2], "w", encoding="utf-8") as fh:
-            fh.write(text)
+    write_if_changed(argv[2], emit(lib, configs).encode("utf-8"))
+    if plcopen_out:
+        import plcopen
+        write_if_changed(plcopen_out, plcopen.export(lib, lib.version))
     return 0
 
 

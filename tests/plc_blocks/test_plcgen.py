@@ -153,6 +153,57 @@ class GoodDeclarations(unittest.TestCase):
         self.assertEqual(rc, 0, err)
 
 
+class PlcopenExport(unittest.TestCase):
+    """--plcopen writes the interface as TC6 XML: types, pins with their comments, constants, no body."""
+
+    @classmethod
+    def setUpClass(cls):
+        import xml.etree.ElementTree as ET
+        lib = Lib()
+        try:
+            xml_out = os.path.join(lib.dir, "lib.xml")
+            rc, err, _ = lib.run("--plcopen", xml_out)
+            assert rc == 0, err
+            cls.root = ET.parse(xml_out).getroot()
+        finally:
+            lib.close()
+        cls.ns = {"p": "http://www.plcopen.org/xml/tc6_0201", "x": "http://www.w3.org/1999/xhtml"}
+
+    def find(self, path):
+        return self.root.find(path, self.ns)
+
+    def test_function_block_pins_in_sections_with_comments(self):
+        fb = self.find(".//p:pou[@name='Gain']")
+        self.assertEqual(fb.get("pouType"), "functionBlock")
+        names = lambda sec: [v.get("name") for v in fb.findall("p:interface/p:%s/p:variable" % sec, self.ns)]
+        self.assertEqual(names("inputVars"), ["Enable", "Parameters", "U", "Name"])
+        self.assertEqual(names("outputVars"), ["Y", "Mode", "N"])
+        self.assertEqual(names("localVars"), ["Acc", "pTab", "Obj"])
+        u = fb.find("p:interface/p:inputVars/p:variable[@name='U']", self.ns)
+        self.assertEqual(u.find("p:documentation/x:p", self.ns).text, "input")
+        self.assertIsNotNone(u.find("p:type/p:REAL", self.ns))
+        self.assertEqual(fb.find("p:interface/p:inputVars/p:variable[@name='Name']/p:type/p:string",
+                                 self.ns).get("length"), "10")
+        self.assertEqual(fb.find("p:interface/p:localVars/p:variable[@name='pTab']/p:type/p:pointer/p:baseType/p:LREAL",
+                                 self.ns) is not None, True)
+
+    def test_body_is_external_not_invented(self):
+        fb = self.find(".//p:pou[@name='Gain']")
+        self.assertIsNone(fb.find("p:body", self.ns))
+        ext = fb.find("p:addData/p:data/{urn:fracarm:plcopen}externalBody", self.ns)
+        self.assertEqual((ext.get("language"), ext.get("file")), ("ANSIC", "Gain.c"))
+
+    def test_array_bounds_enum_values_and_constants(self):
+        dims = self.find(".//p:dataType[@name='GainParType']//p:variable[@name='Grid']/p:type/p:array")
+        self.assertEqual([(d.get("lower"), d.get("upper")) for d in dims.findall("p:dimension", self.ns)],
+                         [("1", "2"), ("0", "2")])
+        vals = self.find(".//p:dataType[@name='ModeEnum']/p:baseType/p:enum/p:values")
+        self.assertEqual([(v.get("name"), v.get("value")) for v in vals], [("modeOFF", "0"), ("modeON", "1"),
+                                                                           ("modeHOLD", "7")])
+        c = self.find(".//p:globalVars[@constant='true']/p:variable[@name='errX']")
+        self.assertEqual(c.find("p:initialValue/p:simpleValue", self.ns).get("value"), "16#FFFE")
+
+
 class LayoutChecks(unittest.TestCase):
     """The compile-time checks of a type naming a C type stop the build when the C type does not fit."""
 
