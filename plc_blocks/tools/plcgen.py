@@ -3,7 +3,11 @@
 IEC 61131-3 declarations (.typ, .var, .fun), which are the single source of
 truth for every block interface (ARCHITECTURE.md, plc_blocks rules).
 
-usage: plcgen.py [--config MACRO:ALIAS=TYPE]... [--plcopen OUT.xml] LIBRARY.lby OUT.h
+usage: plcgen.py [--config MACRO:ALIAS=TYPE]... [--plcopen OUT.xml] [--st PROG.st]... LIBRARY.lby OUT.h
+
+--st PROG.st: parse a Structured Text program with the same parser and
+type-check it against the library (stcheck.py: only declared pins, of the
+right types); its interface goes into the PLCopen export, body external (ST).
 
 --plcopen OUT.xml: also write the PLCopen TC6 XML v2.01 export of the
 library's interface (plcopen.py): data types, function blocks, constants.
@@ -70,6 +74,7 @@ TOKEN_RE = re.compile(r"""
   | (?P<real>[+-]?\d+\.\d+(?:[eE][+-]?\d+)?|[+-]?\d+[eE][+-]?\d+)
   | (?P<int>[+-]?(?:16\#[0-9A-Fa-f_]+|2\#[01_]+|\d[\d_]*))
   | (?P<ident>[A-Za-z_][A-Za-z0-9_]*)
+  | (?P<op>=>|<=|>=|<>|[=<>+\-*/.#&])
   | (?P<punct>[:;(),\[\]])
 """, re.S | re.X)
 
@@ -111,6 +116,8 @@ def int_value(text):
 
 
 class Parser:
+    allow_fb_types = False  # function block instances as variables: programs only (stcheck.py)
+
     def __init__(self, path, text, lib):
         self.path, self.toks, self.i, self.lib = path, tokenize(path, text), 0, lib
 
@@ -201,6 +208,8 @@ class Parser:
             self.expect("]")
             return "plcstring", [n + 1]
         name = self.ident("type")
+        if name.text in self.lib.fbs and self.allow_fb_types:
+            return "FB:" + name.text, []
         if name.text not in IEC_TYPES and name.text not in self.lib.types:
             raise self.err("unknown type '%s' (not an IEC elementary type and not declared in a .typ file)"
                            % name.text, name)
@@ -542,7 +551,7 @@ def generate(lby):
     return lib
 
 
-USAGE = "usage: plcgen.py [--config MACRO:ALIAS=TYPE]... [--plcopen OUT.xml] LIBRARY.lby OUT.h\n"
+USAGE = "usage: plcgen.py [--config MACRO:ALIAS=TYPE]... [--plcopen OUT.xml] [--st PROG.st]... LIBRARY.lby OUT.h\n"
 
 
 def write_if_changed(path, data):
@@ -574,10 +583,12 @@ def parse_configs(lib, specs):
 
 
 def main(argv):
-    args, specs, plcopen_out = argv[1:], [], None
-    while len(args) >= 2 and args[0] in ("--config", "--plcopen"):
+    args, specs, plcopen_out, st_files = argv[1:], [], None, []
+    while len(args) >= 2 and args[0] in ("--config", "--plcopen", "--st"):
         if args[0] == "--config":
             specs.append(args[1])
+        elif args[0] == "--st":
+            st_files.append(args[1])
         else:
             plcopen_out = args[1]
         args = args[2:]
@@ -588,15 +599,20 @@ def main(argv):
     try:
         lib = generate(argv[1])
         configs = parse_configs(lib, specs)
+        import stcheck
+        programs = stcheck.parse_programs(lib, st_files)
     except GenError as e:
         sys.stderr.write("%s\n" % e)
         return 1
     write_if_changed(argv[2], emit(lib, configs).encode("utf-8"))
     if plcopen_out:
         import plcopen
-        write_if_changed(plcopen_out, plcopen.export(lib, lib.version))
+        for prog in programs:
+            prog.update(language="ST", body=os.path.basename(prog["file"]))
+        write_if_changed(plcopen_out, plcopen.export(lib, lib.version, programs))
     return 0
 
 
 if __name__ == "__main__":
+    sys.modules.setdefault("plcgen", sys.modules[__name__])  # stcheck/plcopen share this module's classes
     sys.exit(main(sys.argv))

@@ -62,18 +62,19 @@ def external_body(parent, language, path):
     ET.SubElement(data, "{%s}externalBody" % EXT, language=language, file=path)
 
 
-def pou(pous, name, kind, sections, doc, body_file):
+def pou(pous, name, kind, sections, doc, language, body_file):
     p = ET.SubElement(pous, q("pou"), name=name, pouType=kind)
     iface = ET.SubElement(p, q("interface"))
     for tag, members in sections:
         if members:
             variables(ET.SubElement(iface, q(tag)), members)
-    external_body(p, "ANSIC", body_file)
+    external_body(p, language, body_file)
     documentation(p, doc)
 
 
 def export(lib, version, programs=()):
-    """The TC6 XML document (bytes) of lib; programs: (name, sections dict, doc, C body file)."""
+    """The TC6 XML document (bytes) of lib; programs: dicts of stcheck.py with the language and
+    file of their body."""
     ET.register_namespace("", NS)
     ET.register_namespace("xhtml", XHTML)
     ET.register_namespace("fracarm", EXT)
@@ -110,11 +111,11 @@ def export(lib, version, programs=()):
     pous = ET.SubElement(types, q("pous"))
     for fb in lib.fbs.values():
         pou(pous, fb["name"], "functionBlock", (("inputVars", fb["inputs"]), ("outputVars", fb["outputs"]),
-            ("inOutVars", fb.get("inouts", [])), ("localVars", fb["internal"])), fb["doc"], fb["name"] + ".c")
-    for name, sections, doc, body in programs:
-        pou(pous, name, "program", (("inputVars", sections.get("inputs", [])),
-            ("outputVars", sections.get("outputs", [])), ("inOutVars", sections.get("inouts", [])),
-            ("localVars", sections.get("internal", []))), doc, body)
+            ("inOutVars", fb.get("inouts", [])), ("localVars", fb["internal"])), fb["doc"], "ANSIC",
+            fb["name"] + ".c")
+    for prog in programs:
+        pou(pous, prog["name"], "program", (("inputVars", prog["inputs"]), ("outputVars", prog["outputs"]),
+            ("localVars", prog["internal"])), prog["doc"], prog["language"], prog["body"])
     inst = ET.SubElement(root, q("instances"))
     cfgs = ET.SubElement(inst, q("configurations"))
     if lib.consts:

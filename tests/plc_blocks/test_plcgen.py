@@ -204,6 +204,92 @@ class PlcopenExport(unittest.TestCase):
         self.assertEqual(c.find("p:initialValue/p:simpleValue", self.ns).get("value"), "16#FFFE")
 
 
+PROG = """(* a program on Gain *)
+PROGRAM UseGain (*doc of the program*)
+	VAR_INPUT
+		In : REAL; (*input of the program*)
+		Go : BOOL;
+	END_VAR
+	VAR_OUTPUT
+		Out : LREAL;
+		Status : ModeEnum;
+	END_VAR
+	VAR
+		G : Gain;
+		Buf : ARRAY[0..3] OF LREAL;
+		Count : UDINT := 2;
+	END_VAR
+	G.Parameters.K := 2.0;
+	G.Parameters.Table[1] := Buf[Count];
+	G(Enable := Go AND NOT (In > 1.5), U := In * 2.0, Mode => Status);
+	IF G.Mode = ModeEnum#modeON THEN
+		Out := G.Y;
+	ELSIF Status = modeHOLD THEN
+		Out := REAL_TO_LREAL(LIMIT(-1.0, G.Y, 1.0)) + Buf[0];
+	ELSE
+		Count := Count + UINT_TO_UDINT(lenTAB);
+	END_IF;
+END_PROGRAM
+"""
+
+
+class StPrograms(unittest.TestCase):
+    """ST programs parse with the declaration parser and every call uses declared pins of the right type."""
+
+    def check(self, prog):
+        lib = Lib(**{"prog.st": prog})
+        try:
+            xml_out = os.path.join(lib.dir, "lib.xml")
+            rc, err, _ = lib.run("--st", os.path.join(lib.dir, "prog.st"), "--plcopen", xml_out)
+            xml_text = open(xml_out).read() if rc == 0 else None
+        finally:
+            lib.close()
+        return rc, err, xml_text
+
+    def reject(self, pattern, old, new):
+        self.assertIn(old, PROG)
+        rc, err, _ = self.check(PROG.replace(old, new))
+        self.assertEqual(rc, 1, "accepted: " + new)
+        self.assertRegex(err, r"prog\.st:\d+: error: " + pattern)
+
+    def test_good_program_passes_and_exports_its_interface(self):
+        rc, err, xml_text = self.check(PROG)
+        self.assertEqual(rc, 0, err)
+        self.assertIn('pouType="program"', xml_text)
+        self.assertIn('language="ST" file="prog.st"', xml_text)
+        self.assertIn("input of the program", xml_text)
+
+    def test_undeclared_pin(self):
+        self.reject(r"'Gain2' is not an input of Gain", "U := In * 2.0", "Gain2 := In")
+
+    def test_output_given_as_input(self):
+        self.reject(r"'Y' is not an input of Gain", "U := In * 2.0", "Y := In")
+
+    def test_pin_of_the_wrong_type(self):
+        self.reject(r"input G\.U: REAL expected, found BOOL", "U := In * 2.0", "U := Go")
+
+    def test_narrowing_needs_a_conversion(self):
+        self.reject(r"assignment to 'In': REAL expected, found LREAL", "Out := G.Y;", "In := Out;")
+
+    def test_internal_variable_is_not_a_pin(self):
+        self.reject(r"'Acc' is not a pin of Gain", "Out := G.Y;", "Out := G.Acc;")
+
+    def test_output_cannot_be_assigned(self):
+        self.reject(r"output G\.Y cannot be assigned", "Out := G.Y;", "G.Y := 1.0;")
+
+    def test_undeclared_variable(self):
+        self.reject(r"'Nope' is not a declared variable", "Out := G.Y;", "Out := Nope;")
+
+    def test_condition_must_be_bool(self):
+        self.reject(r"condition: BOOL expected, found REAL", "IF G.Mode = ModeEnum#modeON THEN", "IF In THEN")
+
+    def test_unknown_enumerator(self):
+        self.reject(r"'ModeEnum#modeFAST' is not a declared enumerator", "ModeEnum#modeON", "ModeEnum#modeFAST")
+
+    def test_output_pin_into_a_variable_of_another_type(self):
+        self.reject(r"output G\.Mode: BOOL expected, found ModeEnum", "Mode => Status", "Mode => Go")
+
+
 class LayoutChecks(unittest.TestCase):
     """The compile-time checks of a type naming a C type stop the build when the C type does not fit."""
 
@@ -327,6 +413,37 @@ class MalformedDeclarations(unittest.TestCase):
 
     def test_listed_file_missing(self):
         self.reject(r"file 'Gain\.c' listed in the descriptor does not exist", **{"Gain.c": None})
+
+
+class ShippedExamples(unittest.TestCase):
+    """docs/st: every block has an ST example that calls it; ArmCtrl.st calls the blocks in the C order."""
+
+    def setUp(self):
+        sys.path.insert(0, os.path.dirname(GEN))
+        import plcgen
+        import stcheck
+        self.plcgen, self.stcheck = plcgen, stcheck
+        tools = os.path.dirname(os.path.abspath(GEN))
+        self.root = os.path.dirname(os.path.dirname(tools))
+        self.lib = plcgen.generate(os.path.join(self.root, "plc_blocks", "FracCtrl", "ANSIC.lby"))
+        st = os.path.join(self.root, "docs", "st")
+        self.files = sorted(os.path.join(st, f) for f in os.listdir(st) if f.endswith(".st"))
+
+    def test_every_example_type_checks_and_every_block_is_called(self):
+        progs = self.stcheck.parse_programs(self.lib, self.files)
+        called = {fb for p in progs for _, fb in p["calls"]}
+        self.assertEqual(called, set(self.lib.fbs))
+        for fb in self.lib.fbs:
+            self.assertIn(os.path.join(self.root, "docs", "st", fb + ".st"), self.files)
+
+    def test_armctrl_st_calls_the_blocks_in_the_order_of_armctrl_c(self):
+        prog = self.stcheck.parse_programs(self.lib, [os.path.join(self.root, "docs", "st", "ArmCtrl.st")])[0]
+        with open(os.path.join(self.root, "plc_blocks", "programs", "ArmCtrl.c")) as fh:
+            c = fh.read()
+        body = re.search(r"static void run_blocks\(armctrl \*a\)\n\{(.*?)\n\}", c, re.S).group(1)
+        c_calls = re.findall(r"\b(%s)\(&a->" % "|".join(self.lib.fbs), body)
+        self.assertEqual([fb for _, fb in prog["calls"]], c_calls)
+        self.assertEqual(len(c_calls), 5)
 
 
 class ShippedLibrary(unittest.TestCase):
