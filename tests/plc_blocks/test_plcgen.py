@@ -89,7 +89,10 @@ class Lib:
         out = os.path.join(self.dir, "out.h")
         p = subprocess.run([sys.executable, GEN] + list(opts) + [os.path.join(self.dir, "ANSIC.lby"), out],
                            capture_output=True, text=True)
-        header = open(out).read() if p.returncode == 0 else None
+        header = None
+        if p.returncode == 0:
+            with open(out) as fh:
+                header = fh.read()
         return p.returncode, p.stderr, header
 
     def compile(self, *flags):
@@ -241,7 +244,10 @@ class StPrograms(unittest.TestCase):
         try:
             xml_out = os.path.join(lib.dir, "lib.xml")
             rc, err, _ = lib.run("--st", os.path.join(lib.dir, "prog.st"), "--plcopen", xml_out)
-            xml_text = open(xml_out).read() if rc == 0 else None
+            xml_text = None
+            if rc == 0:
+                with open(xml_out) as fh:
+                    xml_text = fh.read()
         finally:
             lib.close()
         return rc, err, xml_text
