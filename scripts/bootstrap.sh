@@ -12,6 +12,7 @@ PKGS=(
   libcmocka-dev libgtest-dev valgrind
   can-utils iproute2
   gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi
+  libxml2-utils
   qemu-system-x86 linux-image-amd64 busybox-static cpio kmod
   python3 python3-numpy python3-scipy python3-venv
 )

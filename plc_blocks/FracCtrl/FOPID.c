@@ -49,7 +49,7 @@ static int fopid_load(void *vinst, int enable_edge)
     int st = fopid_init(inst, &fresh, bank);
     (void)enable_edge;
     if (st == FRAC_OK) {
-        inst->Pid = fresh;
+        *FracFopidObj_C(inst->Pid) = fresh;
         inst->Bank = bank;
         inst->ManualOld = 0; /* a fresh controller starts in automatic mode */
     }
@@ -78,17 +78,17 @@ void FOPID(struct FOPID* inst)
         return;
     }
     if (inst->Reset && !inst->ResetOld) {
-        (void)frac_fopid_reset(&inst->Pid);
+        (void)frac_fopid_reset(FracFopidObj_C(inst->Pid));
     }
     inst->ResetOld = inst->Reset;
     if (inst->Manual != inst->ManualOld) {
-        (void)frac_fopid_set_mode(&inst->Pid, inst->Manual ? FRAC_FOPID_MANUAL : FRAC_FOPID_AUTO);
+        (void)frac_fopid_set_mode(FracFopidObj_C(inst->Pid), inst->Manual ? FRAC_FOPID_MANUAL : FRAC_FOPID_AUTO);
         inst->ManualOld = inst->Manual;
     }
     if (inst->Manual) {
-        (void)frac_fopid_set_manual(&inst->Pid, (frac_real)inst->Y_manual);
+        (void)frac_fopid_set_manual(FracFopidObj_C(inst->Pid), (frac_real)inst->Y_manual);
     }
-    st = frac_fopid_step(&inst->Pid, (frac_real)inst->W, (frac_real)inst->X, &u);
+    st = frac_fopid_step(FracFopidObj_C(inst->Pid), (frac_real)inst->W, (frac_real)inst->X, &u);
     inst->Y = (REAL)u;
     inst->Saturated = st == FRAC_W_SATURATED;
     FRACCTRL_OUTPUTS(inst, st);

@@ -35,7 +35,7 @@ static int fracdamp_init(struct FracDamp* inst, UDINT bank)
     if (frac_fodamp_storage_len(&prm) > (size_t)fracFODAMP_STORAGE_LEN) {
         return FRAC_E_STORAGE;
     }
-    return frac_fodamp_init(&inst->Damp[bank], &prm, inst->Storage[bank], (size_t)fracFODAMP_STORAGE_LEN);
+    return frac_fodamp_init(FracFodampObj_C(inst->Damp[bank]), &prm, inst->Storage[bank], (size_t)fracFODAMP_STORAGE_LEN);
 }
 
 static int fracdamp_load(void *vinst, int enable_edge)
@@ -70,10 +70,10 @@ void FracDamp(struct FracDamp* inst)
         return;
     }
     if (inst->Reset && !inst->ResetOld) {
-        (void)frac_fodamp_reset(&inst->Damp[inst->Bank]);
+        (void)frac_fodamp_reset(FracFodampObj_C(inst->Damp[inst->Bank]));
     }
     inst->ResetOld = inst->Reset;
-    st = frac_fodamp_step(&inst->Damp[inst->Bank], (frac_real)inst->W, (frac_real)inst->X, &y);
+    st = frac_fodamp_step(FracFodampObj_C(inst->Damp[inst->Bank]), (frac_real)inst->W, (frac_real)inst->X, &y);
     inst->Y = (REAL)y;
     FRACCTRL_OUTPUTS(inst, st);
 }

@@ -32,7 +32,7 @@ static int fracop_load(void *vinst, int enable_edge)
     }
     st = frac_fo_init(&fresh, &prm, inst->Storage[bank], (size_t)fracFO_STORAGE_LEN);
     if (st == FRAC_OK) {
-        inst->Op = fresh;
+        *FracFoObj_C(inst->Op) = fresh;
         inst->Bank = bank;
     }
     return st;
@@ -58,10 +58,10 @@ void FracOp(struct FracOp* inst)
         return;
     }
     if (inst->Reset && !inst->ResetOld) {
-        (void)frac_fo_reset(&inst->Op);
+        (void)frac_fo_reset(FracFoObj_C(inst->Op));
     }
     inst->ResetOld = inst->Reset;
-    st = frac_fo_step(&inst->Op, (frac_real)inst->X, &y);
+    st = frac_fo_step(FracFoObj_C(inst->Op), (frac_real)inst->X, &y);
     inst->Y = (REAL)y;
     FRACCTRL_OUTPUTS(inst, st);
 }

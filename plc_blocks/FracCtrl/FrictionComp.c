@@ -36,7 +36,7 @@ static int friction_load(void *vinst, int enable_edge)
     fp.delta = (frac_real)p->Delta;
     st = frac_friction_init(&fresh, &fp);
     if (st == FRAC_OK) {
-        inst->Friction = fresh;
+        *FracFrictionObj_C(inst->Friction) = fresh;
     }
     return st;
 }
@@ -57,7 +57,7 @@ void FrictionComp(struct FrictionComp* inst)
     if (!FRACCTRL_ENTER(&friction_block, inst)) {
         return;
     }
-    st = frac_friction_eval(&inst->Friction, (frac_real)inst->Velocity, &tau);
+    st = frac_friction_eval(FracFrictionObj_C(inst->Friction), (frac_real)inst->Velocity, &tau);
     inst->Torque = (REAL)tau;
     FRACCTRL_OUTPUTS(inst, st);
 }

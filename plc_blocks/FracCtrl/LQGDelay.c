@@ -49,7 +49,7 @@ static int lqg_load(void *vinst, int enable_edge)
     int st = lqg_init(inst, &fresh, bank);
     (void)enable_edge;
     if (st == FRAC_OK) {
-        inst->Lqg = fresh;
+        *FracLqgObj_C(inst->Lqg) = fresh;
         inst->Bank = bank;
     }
     return st;
@@ -77,15 +77,15 @@ void LQGDelay(struct LQGDelay* inst)
         return;
     }
     if (inst->Reset && !inst->ResetOld) {
-        (void)frac_lqg_reset(&inst->Lqg);
+        (void)frac_lqg_reset(FracLqgObj_C(inst->Lqg));
     }
     inst->ResetOld = inst->Reset;
     for (j = 0; j < fracLQG_MAX_OUTPUTS; j++) {
         y_ref[j] = (frac_real)inst->YRef[j];
         y[j] = (frac_real)inst->Y[j];
     }
-    st = frac_lqg_step(&inst->Lqg, (frac_real)inst->UStar, y_ref, y, &u);
+    st = frac_lqg_step(FracLqgObj_C(inst->Lqg), (frac_real)inst->UStar, y_ref, y, &u);
     inst->U = (REAL)u;
-    inst->FrictionEstimate = (REAL)frac_lqg_friction_estimate(&inst->Lqg);
+    inst->FrictionEstimate = (REAL)frac_lqg_friction_estimate(FracLqgObj_C(inst->Lqg));
     FRACCTRL_OUTPUTS(inst, st);
 }

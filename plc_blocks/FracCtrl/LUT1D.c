@@ -31,7 +31,7 @@ static int lut1d_load(void *vinst, int enable_edge)
                                     (int)p->Interpolation, (int)p->Range, p->pSlopes);
     }
     if (st == FRAC_OK) {
-        inst->Lut = fresh;
+        *FracLut1Obj_C(inst->Lut) = fresh;
     }
     return st;
 }
@@ -52,7 +52,7 @@ void LUT1D(struct LUT1D* inst)
     if (!FRACCTRL_ENTER(&lut1d_block, inst)) {
         return;
     }
-    st = frac_lut1_eval(&inst->Lut, (frac_real)inst->X, &y);
+    st = frac_lut1_eval(FracLut1Obj_C(inst->Lut), (frac_real)inst->X, &y);
     inst->Y = (REAL)y;
     FRACCTRL_OUTPUTS(inst, st);
 }

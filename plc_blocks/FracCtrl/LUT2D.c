@@ -28,7 +28,7 @@ static int lut2d_load(void *vinst, int enable_edge)
     a2.h = (frac_real)p->Dx2;
     st = frac_lut2_init(&fresh, &a1, &a2, p->pZ, (int)p->Range);
     if (st == FRAC_OK) {
-        inst->Lut = fresh;
+        *FracLut2Obj_C(inst->Lut) = fresh;
     }
     return st;
 }
@@ -49,7 +49,7 @@ void LUT2D(struct LUT2D* inst)
     if (!FRACCTRL_ENTER(&lut2d_block, inst)) {
         return;
     }
-    st = frac_lut2_eval(&inst->Lut, (frac_real)inst->X1, (frac_real)inst->X2, &y);
+    st = frac_lut2_eval(FracLut2Obj_C(inst->Lut), (frac_real)inst->X1, (frac_real)inst->X2, &y);
     inst->Y = (REAL)y;
     FRACCTRL_OUTPUTS(inst, st);
 }

@@ -30,7 +30,7 @@ static int partable_load(void *vinst, int enable_edge)
     int st = frac_ptable_open(&fresh, inst->pData, (unsigned long)inst->Size);
     (void)enable_edge;
     if (st == FRAC_OK) {
-        inst->Handle = fresh;
+        *FracPtableObj_C(inst->Handle) = fresh;
         inst->Entries = (UDINT)fresh.n_entries;
     }
     inst->FailEntry = st == FRAC_OK ? -1 : (DINT)fresh.fail_entry;

@@ -49,7 +49,7 @@ static int trajlut_load(void *vinst, int enable_edge)
     int st = trajlut_init(&inst->Parameters, &fresh);
     (void)enable_edge;
     if (st == FRAC_OK) {
-        inst->Traj = fresh;
+        *FracTrajLutObj_C(inst->Traj) = fresh;
     }
     return st;
 }
@@ -81,16 +81,16 @@ void TrajLUT(struct TrajLUT* inst)
         return;
     }
     if (inst->Restart && !inst->RestartOld) {
-        (void)frac_trajlut_seek(&inst->Traj, 0);
+        (void)frac_trajlut_seek(FracTrajLutObj_C(inst->Traj), 0);
     }
     inst->RestartOld = inst->Restart;
-    inst->Cycle = (UDINT)inst->Traj.k;
+    inst->Cycle = (UDINT)FracTrajLutObj_C(inst->Traj)->k;
     if (inst->Run) {
-        st = frac_trajlut_step(&inst->Traj, y, &seg);
+        st = frac_trajlut_step(FracTrajLutObj_C(inst->Traj), y, &seg);
     } else {
-        st = frac_trajlut_eval(&inst->Traj, inst->Traj.k, y, &seg);
+        st = frac_trajlut_eval(FracTrajLutObj_C(inst->Traj), FracTrajLutObj_C(inst->Traj)->k, y, &seg);
     }
-    for (c = 0; c < inst->Traj.channels; c++) {
+    for (c = 0; c < FracTrajLutObj_C(inst->Traj)->channels; c++) {
         inst->Y[c] = (REAL)y[c];
     }
     inst->Segment = (FracTrajSegmentEnum)seg;

@@ -238,7 +238,7 @@ static UINT load_table(armctrl *a)
 {
     UINT st = plcprog_open_table(&a->partable, a->table, a->table_size);
     if (st == fracSTAT_OK) {
-        st = plcprog_status_id(armctrl_params_from_table(a->storage, &a->partable.Handle));
+        st = plcprog_status_id(armctrl_params_from_table(a->storage, FracPtableObj_C(a->partable.Handle)));
     }
     if (st == fracSTAT_OK) {
         a->par = &a->storage->par;

@@ -49,7 +49,7 @@ void damploop_init(void *ctx)
     if (d->table) {
         UINT st = plcprog_open_table(&d->partable, d->table, d->table_size);
         if (st == fracSTAT_OK) {
-            st = plcprog_status_id(damploop_params_from_table(&d->loaded, &d->partable.Handle));
+            st = plcprog_status_id(damploop_params_from_table(&d->loaded, FracPtableObj_C(d->partable.Handle)));
         }
         if (st != fracSTAT_OK) {
             d->fault = 1;

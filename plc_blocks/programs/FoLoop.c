@@ -56,7 +56,7 @@ void foloop_init(void *ctx)
     if (f->table) {
         UINT st = plcprog_open_table(&f->partable, f->table, f->table_size);
         if (st == fracSTAT_OK) {
-            st = plcprog_status_id(foloop_params_from_table(&f->loaded, &f->partable.Handle));
+            st = plcprog_status_id(foloop_params_from_table(&f->loaded, FracPtableObj_C(f->partable.Handle)));
         }
         if (st != fracSTAT_OK) {
             f->fault = 1;

@@ -3,7 +3,20 @@
 IEC 61131-3 declarations (.typ, .var, .fun), which are the single source of
 truth for every block interface (ARCHITECTURE.md, plc_blocks rules).
 
-usage: plcgen.py LIBRARY.lby OUT.h
+usage: plcgen.py [--config MACRO:ALIAS=TYPE]... [--plcopen OUT.xml] [--st PROG.st]... LIBRARY.lby OUT.h
+
+--st PROG.st: parse a Structured Text program with the same parser and
+type-check it against the library (stcheck.py: only declared pins, of the
+right types); its interface goes into the PLCopen export, body external (ST).
+
+--plcopen OUT.xml: also write the PLCopen TC6 XML v2.01 export of the
+library's interface (plcopen.py): data types, function blocks, constants.
+
+--config MACRO:ALIAS=TYPE: a build configuration of the library. With MACRO
+defined, the C header declares the elementary alias ALIAS as TYPE instead of
+its declared base type (FracCtrl: FRAC_REAL_FLOAT:FracReal=REAL, the
+single-precision build of libfrac); the declarations stay those of the
+default configuration.
 
 The library descriptor (.lby, Automation Studio XML) lists the files of the
 library. Every .typ/.var/.fun it lists is parsed; every FUNCTION_BLOCK must
@@ -17,7 +30,17 @@ Supported declarations (the subset the B&R library convention uses):
           Name : STRUCT  field : Type; ...  END_STRUCT;
           Name : ( A := 0, B := 1 );            (enumeration)
           Name : BaseType;                       (alias)
-          Name : {C c_type "header.h"};          (a C type from libfrac, opaque to IEC)
+          Name : ARRAY[0..n] OF LREAL;           (alias of an array: e.g. storage)
+  A type whose documentation comment starts with  C: c_type "header.h";
+  stands for that C type: the header includes "header.h" and checks at
+  compile time (negative array size) that the C type fits the declared IEC
+  data: an elementary alias has the C type's size and alignment; an array
+  alias is at least as large and as aligned, and on the reference
+  configuration (64-bit pointers, no --config macro defined) smaller than
+  the C type plus one element, so the declaration is the least storage.
+  For an array alias it also defines  Name_C(obj), the IEC storage as a
+  pointer to the C type (the only way the bodies access it).
+  Pragmas ({...}) are not IEC 61131-3 and are refused.
   .var  VAR CONSTANT  Name : Type := literal;  END_VAR
   .fun  FUNCTION_BLOCK Name  VAR_INPUT / VAR_OUTPUT / VAR  ...  END_VAR  END_FUNCTION_BLOCK
   Types: the IEC elementary types, declared names, ARRAY[lo..hi] OF Type
@@ -51,6 +74,7 @@ TOKEN_RE = re.compile(r"""
   | (?P<real>[+-]?\d+\.\d+(?:[eE][+-]?\d+)?|[+-]?\d+[eE][+-]?\d+)
   | (?P<int>[+-]?(?:16\#[0-9A-Fa-f_]+|2\#[01_]+|\d[\d_]*))
   | (?P<ident>[A-Za-z_][A-Za-z0-9_]*)
+  | (?P<op>=>|<=|>=|<>|[=<>+\-*/.#&])
   | (?P<punct>[:;(),\[\]])
 """, re.S | re.X)
 
@@ -92,6 +116,8 @@ def int_value(text):
 
 
 class Parser:
+    allow_fb_types = False  # function block instances as variables: programs only (stcheck.py)
+
     def __init__(self, path, text, lib):
         self.path, self.toks, self.i, self.lib = path, tokenize(path, text), 0, lib
 
@@ -140,12 +166,14 @@ class Parser:
         raise self.err("array bound must be an integer or a declared integer constant, found %r" % t.text, t)
 
     def type_ref(self):
-        """Type := Name | ARRAY[lo..hi(, lo..hi)*] OF Name | STRING[n]. Returns (base, dims)."""
+        """Type := Name | ARRAY[lo..hi(, lo..hi)*] OF Name | STRING[n]. Returns (base, dims);
+        self.lows holds the lower bounds of an array's dimensions."""
         t = self.peek()
+        self.lows = []
         if t.text.upper() == "ARRAY":
             self.next()
             self.expect("[")
-            dims = []
+            dims, lows = [], []
             while True:
                 lo_tok = self.peek()
                 lo = self.bound()
@@ -154,6 +182,7 @@ class Parser:
                 if hi < lo:
                     raise self.err("empty array range %d..%d" % (lo, hi), lo_tok)
                 dims.append(hi - lo + 1)
+                lows.append(lo)
                 if self.peek().text == ",":
                     self.next()
                     continue
@@ -163,6 +192,7 @@ class Parser:
             base, inner = self.type_ref()
             if inner:
                 raise self.err("nested ARRAY ... OF ARRAY is not supported; use ARRAY[a..b, c..d]")
+            self.lows = lows
             return base, dims
         if t.text.upper() == "REFERENCE":
             self.next()
@@ -178,6 +208,8 @@ class Parser:
             self.expect("]")
             return "plcstring", [n + 1]
         name = self.ident("type")
+        if name.text in self.lib.fbs and self.allow_fb_types:
+            return "FB:" + name.text, []
         if name.text not in IEC_TYPES and name.text not in self.lib.types:
             raise self.err("unknown type '%s' (not an IEC elementary type and not declared in a .typ file)"
                            % name.text, name)
@@ -192,7 +224,9 @@ class Parser:
             raise self.err("initial value for '%s' is not supported in %s (the runtime zero-initialises "
                            "instances)" % (name.text, section))
         self.expect(";", "after the declaration of '%s'" % name.text)
-        return {"name": name.text, "type": base, "dims": dims, "doc": self.comment(), "line": name.line}
+        lows = self.lows
+        return {"name": name.text, "type": base, "dims": dims, "lows": lows, "doc": self.comment(),
+                "line": name.line}
 
     # ---- .typ -------------------------------------------------------------
     def parse_typ(self):
@@ -255,20 +289,34 @@ class Parser:
             decl["values"] = values
             self.lib.types[name.text] = decl
         elif t.kind == "pragma":
-            self.next()
-            m = re.fullmatch(r'\{\s*C\s+([A-Za-z_][A-Za-z0-9_]*)\s+"([^"]+)"\s*\}', t.text)
-            if not m:
-                raise self.err('malformed C type pragma %s, expected {C c_type "header.h"}' % t.text, t)
-            decl.update(kind="ctype", ctype=m.group(1), header=m.group(2))
-            self.lib.types[name.text] = decl
+            raise self.err("pragma %s in type '%s' is not IEC 61131-3: declare the data as IEC types (e.g. "
+                           "ARRAY[0..n] OF LREAL) and name the C type in the comment as 'C: c_type \"header.h\";'"
+                           % (t.text, name.text), t)
         else:
             base, dims = self.type_ref()
-            decl.update(kind="alias", type=base, dims=dims)
+            decl.update(kind="alias", type=base, dims=dims, lows=self.lows)
             self.lib.types[name.text] = decl
         self.expect(";", "after the declaration of type '%s'" % name.text)
         more = self.comment()
         if more:
             decl["doc"] = (decl["doc"] + " " + more).strip()
+        self.c_tag(decl, name)
+
+    C_TAG_RE = re.compile(r'C:\s*([A-Za-z_][A-Za-z0-9_]*)\s+"([^"]+)"\s*;\s*')
+
+    def c_tag(self, decl, name):
+        """'C: c_type "header.h";' at the start of a type's comment: the C type it stands for."""
+        m = self.C_TAG_RE.match(decl["doc"])
+        if not m:
+            if decl["doc"].startswith("C:"):
+                raise self.err('malformed C type tag in the comment of \'%s\', expected C: c_type "header.h";'
+                               % name.text, name)
+            return
+        elementary = decl["kind"] == "alias" and decl["type"] in IEC_TYPES
+        if not (decl["kind"] == "alias" and (elementary or decl["dims"])):
+            raise self.err("type '%s' names the C type %s but is not an alias of an elementary type or of "
+                           "an array (only those can stand for a C type)" % (name.text, m.group(1)), name)
+        decl.update(ctype=m.group(1), header=m.group(2), doc=decl["doc"][m.end():])
 
     # ---- .var -------------------------------------------------------------
     def parse_var(self):
@@ -365,7 +413,7 @@ def c_decl(base, name, dims):
     return "%s %s%s" % (base, name, "".join("[%d]" % d for d in dims))
 
 
-def emit(lib):
+def emit(lib, configs=()):
     guard = "%s_H_GENERATED" % lib.name.upper()
     out = ["/* %s.h: GENERATED by plc_blocks/tools/plcgen.py from %s.typ, %s.var, %s.fun." % (
         lib.name, lib.name, lib.name, lib.name),
@@ -373,8 +421,10 @@ def emit(lib):
         "#ifndef %s" % guard, "#define %s" % guard, "", '#include "plctypes.h"']
     headers = []
     for t in lib.types.values():
-        if t["kind"] == "ctype" and t["header"] not in headers:
+        if "ctype" in t and t["header"] not in headers:
             headers.append(t["header"])
+    if headers:
+        out.append("#include <stddef.h>")
     out += ['#include "%s"' % h for h in headers]
     out += ["", "#ifdef __cplusplus", 'extern "C" {', "#endif", ""]
     if lib.consts:
@@ -392,8 +442,14 @@ def emit(lib):
         out.append("")
     out.append("/* Data types (%s.typ) */" % lib.name)
     for t in lib.types.values():
-        if t["kind"] == "ctype":
-            out.append("typedef %s %s;%s" % (t["ctype"], t["name"], c_comment(t["doc"])))
+        conf = [c for c in configs if c[1] == t["name"]]
+        if t["kind"] == "alias" and conf:
+            for k, (macro, _, ty) in enumerate(conf):
+                out.append("#%s defined(%s)" % ("if" if k == 0 else "elif", macro))
+                out.append("typedef %s %s;%s" % (ty, t["name"], c_comment("configuration " + macro)))
+            out.append("#else")
+            out.append("typedef %s;%s" % (c_decl(t["type"], t["name"], t["dims"]), c_comment(t["doc"])))
+            out.append("#endif")
         elif t["kind"] == "alias":
             out.append("typedef %s;%s" % (c_decl(t["type"], t["name"], t["dims"]), c_comment(t["doc"])))
         elif t["kind"] == "enum":
@@ -408,6 +464,7 @@ def emit(lib):
                 out.append("    %s;%s" % (c_decl(f["type"], f["name"], f["dims"]), c_comment(f["doc"])))
             out.append("} %s;" % t["name"])
         out.append("")
+    out += emit_layout_checks(lib, configs)
     out.append("/* Function blocks (%s.fun) */" % lib.name)
     for fb in lib.fbs.values():
         out.append("/* %s%s */" % (fb["name"], (": " + fb["doc"]) if fb["doc"] else ""))
@@ -422,6 +479,33 @@ def emit(lib):
         out.append("")
     out += ["#ifdef __cplusplus", "}", "#endif", "", "#endif /* %s */" % guard, ""]
     return "\n".join(out)
+
+
+def emit_layout_checks(lib, configs):
+    """Compile-time proof that each type naming a C type holds it (negative array size)."""
+    tagged = [t for t in lib.types.values() if "ctype" in t]
+    if not tagged:
+        return []
+    out = ["/* Layout: each IEC type below stands for a C type; a negative array size stops the build",
+           "   when the C type does not fit (size, alignment; least storage on the reference",
+           "   configuration: 64-bit pointers, no configuration macro). */"]
+    tight, ref = [], " && ".join("!defined(%s)" % m for m in sorted({c[0] for c in configs})) or "1"
+    for t in tagged:
+        n, c = t["name"], t["ctype"]
+        out.append("struct %s_align_c { char c; %s x; };" % (n, c))
+        out.append("struct %s_align_iec { char c; %s x; };" % (n, n))
+        al_c, al_i = "offsetof(struct %s_align_c, x)" % n, "offsetof(struct %s_align_iec, x)" % n
+        if t["dims"]:
+            out.append("#define %s_C(obj) ((%s *)(void *)(obj)) /* the storage as the C object */" % (n, c))
+            out.append("typedef char %s_holds_%s[(sizeof(%s) <= sizeof(%s)) ? 1 : -1];" % (n, c, c, n))
+            out.append("typedef char %s_aligned_for_%s[(%s <= %s) ? 1 : -1];" % (n, c, al_c, al_i))
+            tight.append("typedef char %s_least_for_%s[(sizeof(void *) != 8 || sizeof(%s) - sizeof(%s) < "
+                         "sizeof(%s)) ? 1 : -1];" % (n, c, n, c, t["type"]))
+        else:
+            out.append("typedef char %s_size_of_%s[(sizeof(%s) == sizeof(%s)) ? 1 : -1];" % (n, c, c, n))
+            out.append("typedef char %s_align_of_%s[(%s == %s) ? 1 : -1];" % (n, c, al_c, al_i))
+    out += ["#if %s" % ref] + tight + ["#endif", ""]
+    return out
 
 
 def read_lby(path):
@@ -441,6 +525,7 @@ def generate(lby):
     entries = read_lby(lby)
     files = [f for f, _ in entries]
     lib = Library(os.path.basename(libdir))
+    lib.version = ET.parse(lby).getroot().get("Version", "0")
     order = {".var": 0, ".typ": 1, ".fun": 2}
     decl_files = sorted((f for f in files if os.path.splitext(f)[1] in order),
                         key=lambda f: order[os.path.splitext(f)[1]])
@@ -466,25 +551,68 @@ def generate(lby):
     return lib
 
 
+USAGE = "usage: plcgen.py [--config MACRO:ALIAS=TYPE]... [--plcopen OUT.xml] [--st PROG.st]... LIBRARY.lby OUT.h\n"
+
+
+def write_if_changed(path, data):
+    """Writes data (bytes) through a temporary file, so a failure leaves no half-written output."""
+    if os.path.exists(path):
+        with open(path, "rb") as fh:
+            if fh.read() == data:
+                return
+    tmp = path + ".tmp"
+    with open(tmp, "wb") as fh:
+        fh.write(data)
+    os.replace(tmp, path)
+
+
+def parse_configs(lib, specs):
+    configs = []
+    for spec in specs:
+        m = re.fullmatch(r"([A-Za-z_]\w*):([A-Za-z_]\w*)=([A-Za-z_]\w*)", spec)
+        if not m:
+            raise GenError("--config", 1, "'%s' is not MACRO:ALIAS=TYPE" % spec)
+        t = lib.types.get(m.group(2))
+        if t is None or t["kind"] != "alias" or t["type"] not in IEC_TYPES:
+            raise GenError("--config", 1, "'%s' is not a declared alias of an elementary type" % m.group(2))
+        if m.group(3) not in IEC_TYPES:
+            raise GenError("--config", 1, "'%s' is not an IEC elementary type (allowed: %s)"
+                           % (m.group(3), ", ".join(sorted(IEC_TYPES))))
+        configs.append(m.groups())
+    return configs
+
+
 def main(argv):
-    if len(argv) != 3:
-        sys.stderr.write("usage: plcgen.py LIBRARY.lby OUT.h\n")
+    args, specs, plcopen_out, st_files = argv[1:], [], None, []
+    while len(args) >= 2 and args[0] in ("--config", "--plcopen", "--st"):
+        if args[0] == "--config":
+            specs.append(args[1])
+        elif args[0] == "--st":
+            st_files.append(args[1])
+        else:
+            plcopen_out = args[1]
+        args = args[2:]
+    if len(args) != 2 or args[0].startswith("--"):
+        sys.stderr.write(USAGE)
         return 2
+    argv = [argv[0]] + args
     try:
         lib = generate(argv[1])
+        configs = parse_configs(lib, specs)
+        import stcheck
+        programs = stcheck.parse_programs(lib, st_files)
     except GenError as e:
         sys.stderr.write("%s\n" % e)
         return 1
-    text = emit(lib)
-    old = None
-    if os.path.exists(argv[2]):
-        with open(argv[2], encoding="utf-8") as fh:
-            old = fh.read()
-    if old != text:
-        with open(argv[2], "w", encoding="utf-8") as fh:
-            fh.write(text)
+    write_if_changed(argv[2], emit(lib, configs).encode("utf-8"))
+    if plcopen_out:
+        import plcopen
+        for prog in programs:
+            prog.update(language="ST", body=os.path.basename(prog["file"]))
+        write_if_changed(plcopen_out, plcopen.export(lib, lib.version, programs))
     return 0
 
 
 if __name__ == "__main__":
+    sys.modules.setdefault("plcgen", sys.modules[__name__])  # stcheck/plcopen share this module's classes
     sys.exit(main(sys.argv))

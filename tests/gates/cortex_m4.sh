@@ -2,7 +2,8 @@
 # Cortex-M4F gate: cross-compile libfrac and the plc_blocks bodies with
 # arm-none-eabi-gcc (single precision: frac_real = float, hard FPU ABI),
 # archive them, and prove with arm-none-eabi-nm that nothing references the
-# heap, stdio or file I/O. Prints the archive size.
+# heap, stdio or file I/O. Prints the archive size. -fno-strict-aliasing:
+# the plc_blocks bodies keep libfrac objects in IEC storage (plc_blocks/CMakeLists.txt).
 # usage: cortex_m4.sh OUTDIR "INCLUDE_DIRS..." SOURCES...
 set -euo pipefail
 out=$1; shift
@@ -14,7 +15,7 @@ iflags=(); for d in $incs; do iflags+=(-I"$d"); done
 for src in "$@"; do
   obj="$out/$(basename "${src%.c}").o"
   "$CC" -mcpu=cortex-m4 -mfpu=fpv4-sp-d16 -mfloat-abi=hard -mthumb -Os -ffunction-sections \
-        -std=c99 -pedantic -Wall -Wextra -Werror -Wdouble-promotion -Wno-error=double-promotion \
+        -std=c99 -fno-strict-aliasing -pedantic -Wall -Wextra -Werror -Wdouble-promotion -Wno-error=double-promotion \
         -DFRAC_REAL_FLOAT=1 "${iflags[@]}" -c "$src" -o "$obj"
 done
 arm-none-eabi-ar rcs "$out/libfrac_m4.a" "$out"/*.o

@@ -37,7 +37,7 @@ static void test_partable_accepts_a_valid_table(void **state)
     assert_false(b.Error);
     assert_int_equal(b.StatusID, fracSTAT_OK);
     assert_int_equal(b.Entries, 2);
-    assert_int_equal(frac_ptable_get(&b.Handle, "M", 2, 3, v), FRAC_OK);
+    assert_int_equal(frac_ptable_get(FracPtableObj_C(b.Handle), "M", 2, 3, v), FRAC_OK);
     assert_close(v[5], 6.0, 0.0);
     b.Enable = 0;
     ParTable(&b);
