@@ -375,8 +375,8 @@ static int out_begin(const char *out, char *tmp, size_t cap)
     size_t len = strlen(out);
     while (len > 1 && out[len - 1] == '/')
         len--;
-    if (len == 0 || len >= sizeof parent) {
-        fprintf(stderr, "hil_bench: --out '%s': wants a directory path shorter than %d bytes\n", out, PATH_MAX);
+    if (len == 0 || len >= sizeof parent || (len == 1 && out[0] == '/')) {
+        fprintf(stderr, "hil_bench: --out '%s': wants a directory path (not /) shorter than %d bytes\n", out, PATH_MAX);
         return -1;
     }
     memcpy(parent, out, len);
