@@ -113,8 +113,9 @@ int hil_plc_law_init_exp_a(struct hil_plc_law *L, double T, double I_M, double I
 
 /* err for a table ArmCtrl's _INIT refused: the failing field of the FRPT
  * validation (frac_ptable_open: "crc32", "entry.values of entry 2 'A'", ...),
- * else the content check that failed (armctrl_params_from_table: an entry
- * missing or of the wrong size), else a value a block refused; each with
+ * else the entry of ArmCtrl's layout that failed (armctrl_params_from_table:
+ * missing, of the wrong size or out of range), else a value a block
+ * refused; each with
  * ArmCtrl's StatusID. */
 static void describe_refusal(struct hil_plc_law *L, const unsigned char *b, unsigned long size, char *err,
                              size_t errlen)
@@ -139,8 +140,8 @@ static void describe_refusal(struct hil_plc_law *L, const unsigned char *b, unsi
     }
     st = armctrl_params_from_table(&L->store, &t);
     if (st != FRAC_OK)
-        snprintf(err, errlen, "%s: an entry of ArmCtrl's layout is missing, of the wrong size or out of range "
-                 "(plc_blocks/programs/ArmCtrl.h; ArmCtrl StatusID %u)", frac_status_str(st), sid);
+        snprintf(err, errlen, "%s (entry '%s': missing, of the wrong size or out of range for ArmCtrl's layout, "
+                 "plc_blocks/programs/ArmCtrl.h; ArmCtrl StatusID %u)", frac_status_str(st), L->store.fail_entry, sid);
     else
         snprintf(err, errlen, "a block refused a value at ArmCtrl's _INIT (ArmCtrl StatusID %u; FracCtrl.var "
                  "names the codes)", sid);

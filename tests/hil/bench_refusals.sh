@@ -71,6 +71,23 @@ corrupt_ctrl_table)
     check "corrupt ctrl.table $mode: nothing written" [ ! -e run ]
     check "corrupt ctrl.table $mode: no temporary directory left" no_tmp
   done
+  # a valid FRPT (CRC right) whose entry "pd" is renamed: ArmCtrl's layout
+  # check names the missing entry
+  /usr/bin/python3 - "$tables/armctrl_A.bin" renamed.bin <<'PY'
+import struct, sys, zlib
+b = bytearray(open(sys.argv[1], "rb").read())
+n = struct.unpack_from("<I", b, 12)[0]
+for i in range(n):
+    off = 48 + 32 * i
+    if b[off:off + 24].rstrip(b"\0") == b"pd":
+        b[off:off + 2] = b"px"
+struct.pack_into("<I", b, len(b) - 4, zlib.crc32(bytes(b[:-4])) & 0xFFFFFFFF)
+open(sys.argv[2], "wb").write(b)
+PY
+  run --scenario "$scen" --set plant=twomass --set ctrl.law=armctrl --set ctrl.table=renamed.bin --out run
+  check "ctrl.table without entry pd: exit 2" [ "$rc" = 2 ]
+  check "ctrl.table without entry pd: the entry named" has "entry 'pd': missing"
+  check "ctrl.table without entry pd: nothing written" [ ! -e run ]
   run --scenario "$scen" --set plant=twomass --set ctrl.law=armctrl --set ctrl.table=nonexistent.bin --out run
   check "missing ctrl.table: exit 2" [ "$rc" = 2 ]
   check "missing ctrl.table: named" has "ctrl.table nonexistent.bin: cannot read the file"
