@@ -280,14 +280,22 @@ static int run_processes(const struct app_opts *o, const char *out, int realtime
     }
     /* the logger listens before anyone sends (the nodes' boot-up heartbeats
      * are their first frames): it opens its log once its socket is bound */
-    for (i = 0; i < 1000 && access(logp, F_OK) != 0; i++)
-        pause_s(0.01);
-    if (access(logp, F_OK) != 0) {
-        fprintf(stderr, "hil_bench: hil_candump did not start within 10 s; its report:\n");
-        kill(pid[4], SIGTERM);
-        waitpid(pid[4], &status, 0);
-        echo_report(out, nodes[4]);
-        return 1;
+    {
+        int exited = 0;
+        for (i = 0; i < 1000 && !exited && access(logp, F_OK) != 0; i++) {
+            pause_s(0.01);
+            exited = waitpid(pid[4], &status, WNOHANG) == pid[4];
+        }
+        if (access(logp, F_OK) != 0) {
+            fprintf(stderr, "hil_bench: hil_candump %s; its report:\n",
+                    exited ? "exited before its log was open" : "did not start within 10 s");
+            if (!exited) {
+                kill(pid[4], SIGTERM);
+                waitpid(pid[4], &status, 0);
+            }
+            echo_report(out, nodes[4]);
+            return 1;
+        }
     }
     for (i = 1; i < 4; i++) {
         char *a[] = {bin[i], "--bus", bus[i], "--scenario", scen, "--idle-exit", "1", NULL, NULL, NULL, NULL, NULL};

@@ -48,6 +48,13 @@ keeps_previous_run)
     check "refused ($bad): no temporary directory left" no_tmp
   done
   check "the corrupt plant table is named with its field" has "crc32"
+  # a node that cannot run (this host has no AF_CAN; with one, no vcan9):
+  # its report is on stderr, the previous run intact
+  run --scenario "$scen" --processes --bus socketcan:vcan9 --out run
+  check "a node that cannot open its bus: exit 1 (was $rc)" [ "$rc" = 1 ]
+  check "... its report on stderr" has "hil_candump: cannot open bus socketcan:vcan9"
+  check "... the previous run is intact" bash -c "sha256sum -c --quiet before.txt"
+  check "... no temporary directory left" no_tmp
   run --scenario "$scen" --set duration=0.12 --out run
   check "a new good run exits 0" [ "$rc" = 0 ]
   check "a new good run replaces the files" bash -c "! sha256sum -c --quiet before.txt 2>/dev/null"
