@@ -18,25 +18,35 @@ static struct hil_transport rx;
 static int tx = -1;
 static struct sockaddr_in to;
 
-/* The bus lives for the process: slot 1 of a 2-node bus on a port derived
- * from the pid; datagrams come from a plain socket bound to slot 0's port. */
+/* The bus lives for the process: slot 1 of a 2-node bus; datagrams come
+ * from a plain socket bound to slot 0's port. The first free pair of ports
+ * from one derived from the pid (other benches may hold some). */
 static void setup(void)
 {
-    char spec[32];
-    struct sockaddr_in from;
-    unsigned port = 43000u + (unsigned)(getpid() % 2000) * 2u;
-    snprintf(spec, sizeof spec, "udp:%u:1:2", port);
-    if (hil_transport_open(&rx, spec) != HIL_OK)
-        abort();
-    tx = socket(AF_INET, SOCK_DGRAM, 0);
-    memset(&from, 0, sizeof from);
-    from.sin_family = AF_INET;
-    from.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    from.sin_port = htons((uint16_t)port);
-    if (tx < 0 || bind(tx, (struct sockaddr *)&from, sizeof from) != 0)
-        abort();
-    to = from;
-    to.sin_port = htons((uint16_t)(port + 1));
+    int k;
+    for (k = 0; k < 200; k++) {
+        char spec[32];
+        struct sockaddr_in from;
+        unsigned port = 50000u + (unsigned)((getpid() + k) % 7000) * 2u;
+        snprintf(spec, sizeof spec, "udp:%u:1:2", port);
+        if (hil_transport_open(&rx, spec) != HIL_OK)
+            continue;
+        tx = socket(AF_INET, SOCK_DGRAM, 0);
+        memset(&from, 0, sizeof from);
+        from.sin_family = AF_INET;
+        from.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+        from.sin_port = htons((uint16_t)port);
+        if (tx >= 0 && bind(tx, (struct sockaddr *)&from, sizeof from) == 0) {
+            to = from;
+            to.sin_port = htons((uint16_t)(port + 1));
+            return;
+        }
+        if (tx >= 0)
+            close(tx);
+        tx = -1;
+        hil_transport_close(&rx);
+    }
+    abort();
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
