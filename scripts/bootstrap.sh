@@ -10,6 +10,7 @@ PKGS=(
   build-essential cmake pkg-config git
   libeigen3-dev libceres-dev libopenblas-dev nlohmann-json3-dev zlib1g-dev libboost-dev
   libcmocka-dev libgtest-dev valgrind
+  clang libclang-rt-14-dev
   can-utils iproute2
   gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi
   libxml2-utils

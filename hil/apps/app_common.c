@@ -73,8 +73,12 @@ void app_parse(int argc, char **argv, struct app_opts *o, const char *usage)
             int st;
             need(i, argc, a);
             st = hil_rig_config_load(&o->cfg, argv[++i], &line);
+            if (st == HIL_E_IO) {
+                fprintf(stderr, "--scenario %s: %s\n", argv[i], o->cfg.err);
+                exit(2);
+            }
             if (st != HIL_OK) {
-                fprintf(stderr, "%s: %s (line %d)\n", argv[i], hil_status_str(st), line);
+                fprintf(stderr, "--scenario %s: line %d: %s\n", argv[i], line, o->cfg.err);
                 exit(2);
             }
         } else if (strcmp(a, "--set") == 0) {
@@ -88,7 +92,7 @@ void app_parse(int argc, char **argv, struct app_opts *o, const char *usage)
             }
             *eq = '\0';
             if (hil_rig_config_set(&o->cfg, buf, eq + 1) != HIL_OK) {
-                fprintf(stderr, "--set %s: unknown key or bad value\n", argv[i]);
+                fprintf(stderr, "--set %s: %s\n", argv[i], o->cfg.err);
                 exit(2);
             }
         } else if (strcmp(a, "--idle-exit") == 0) {
@@ -148,18 +152,6 @@ void app_parse(int argc, char **argv, struct app_opts *o, const char *usage)
     }
     resolve_table(o->cfg.plant_p.table, sizeof o->cfg.plant_p.table, tables);
     resolve_table(o->cfg.ctrl_table, sizeof o->cfg.ctrl_table, tables);
-}
-
-/* The whole file in a new buffer (kept for the process's life: the law
- * reads the table at _INIT); exits 2 when it cannot be read. */
-static unsigned char *slurp(const char *path, unsigned long *size)
-{
-    unsigned char *b = hil_read_file(path, 64ul << 20, size);
-    if (!b) {
-        fprintf(stderr, "ctrl.table %s: cannot read the file\n", path);
-        exit(2);
-    }
-    return b;
 }
 
 void app_open_bus(struct hil_transport *t, const char *spec)
@@ -224,43 +216,52 @@ int app_run_reactive(struct hil_transport *t, app_handler h, void *node, const s
     return failed ? 1 : 0;
 }
 
-void app_setup_law(struct hil_ctrl *c, const struct hil_rig_config *cfg)
+int app_setup_law(struct hil_ctrl *c, const struct hil_rig_config *cfg)
 {
     if (strcmp(cfg->law, "pd") == 0)
-        return;
+        return 0;
 #ifdef HIL_HAVE_PLC
     {
+        /* static: the law (and the table it reads at _INIT) lives as long as
+         * the process */
         static struct hil_plc_law law;
-        char err[256] = "";
+        static unsigned char *table;
+        char err[512] = "";
         int st;
         if (strcmp(cfg->law, "armctrl") == 0) {
             unsigned long size = 0;
-            unsigned char *table;
             if (!cfg->ctrl_table[0]) {
                 fprintf(stderr, "ctrl.law = armctrl needs ctrl.table (ArmCtrl's parameter table)\n");
-                exit(2);
+                return 2;
             }
-            table = slurp(cfg->ctrl_table, &size);
+            free(table);
+            table = hil_read_file(cfg->ctrl_table, 64ul << 20, &size);
+            if (!table) {
+                fprintf(stderr, "ctrl.table %s: cannot read the file (missing, unreadable or larger than 64 MiB)\n",
+                        cfg->ctrl_table);
+                return 2;
+            }
             st = hil_plc_law_init_table(&law, cfg->ctrl.T, table, size, err, sizeof err);
-            if (st == HIL_E_STATE && law.started) {
-                /* the program is in fault: it never enables the torque and
-                 * reports its StatusID (EMCY, meta.json law_status) */
-                fprintf(stderr, "ctrl.law = armctrl: ctrl.table %s: %s; the torque stays disabled\n",
-                        cfg->ctrl_table, err);
-                st = HIL_OK;
+            if (st != HIL_OK) {
+                /* a table ArmCtrl refuses would run with the torque never
+                 * enabled: the bench does not start such a run */
+                fprintf(stderr, "ctrl.table %s: ArmCtrl refuses the table: %s\n", cfg->ctrl_table, err);
+                return 2;
             }
         } else {
             st = hil_plc_law_init_exp_a(&law, cfg->ctrl.T, cfg->plant_p.I_M, cfg->plant_p.I_L, cfg->plant_p.c_s, err,
                                         sizeof err);
-        }
-        if (st != HIL_OK) {
-            fprintf(stderr, "ctrl.law = %s: %s %s\n", cfg->law, hil_status_str(st), err);
-            exit(2);
+            if (st != HIL_OK) {
+                fprintf(stderr, "ctrl.law = %s: %s %s\n", cfg->law, hil_status_str(st), err);
+                return 2;
+            }
         }
         hil_ctrl_set_law(c, hil_plc_law_step, &law);
+        return 0;
     }
 #else
+    (void)c;
     fprintf(stderr, "ctrl.law = %s needs plc_blocks, which this build lacks\n", cfg->law);
-    exit(2);
+    return 2;
 #endif
 }

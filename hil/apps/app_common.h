@@ -41,12 +41,13 @@ int app_run_reactive(struct hil_transport *t, app_handler h, void *node, const s
 /* Installs the scenario's controller law (ctrl.law) in c: "pd" keeps the
  * test law; "armctrl_a" runs plc_blocks' ArmCtrl Exp. A in the task runtime
  * (hil/plc/plc_law.h) with the scenario's plant.I_M/I_L/c_s as its design
- * model; "armctrl" runs ArmCtrl with the parameter table ctrl.table (a table
- * ArmCtrl refuses is reported on stderr and the law runs in fault: torque
- * never enabled, StatusID in the EMCY and meta.json). Exits 2 when the law
- * cannot be set up (or plc_blocks is not built). Relative table paths were
- * resolved by app_parse (--tables). */
-void app_setup_law(struct hil_ctrl *c, const struct hil_rig_config *cfg);
+ * model; "armctrl" runs ArmCtrl with the parameter table ctrl.table.
+ * Returns 0, or 2 after printing why on stderr when the law cannot be set up:
+ * the table is missing or ArmCtrl refuses it (the message names the failing
+ * field or entry and the StatusID; such a run would never enable the
+ * torque), or plc_blocks is not built. Relative table paths were resolved by
+ * app_parse (--tables). Calling it again replaces the law. */
+int app_setup_law(struct hil_ctrl *c, const struct hil_rig_config *cfg);
 
 void app_print_stats(FILE *f, const char *name, const struct hil_transport *t,
                      const struct hil_rx_stats *rx);

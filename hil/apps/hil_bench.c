@@ -9,7 +9,11 @@
  * meta.json, and with --processes each node's report (NODE.txt), the
  * effective scenario (scenario.txt) the nodes were started with, and the
  * controller's and the plant's own CSVs (controller.csv, truth.csv) that
- * signals.csv joins. */
+ * signals.csv joins. The run writes into a temporary directory beside DIR
+ * that is renamed into DIR only when the run succeeded, so a refused or
+ * failed run leaves DIR (an earlier run) as it was; why it stopped goes to
+ * stderr (with --processes, the failing node's report too). Exit 0, 1 (the
+ * run failed) or 2 (the scenario or a table was refused). */
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
@@ -25,7 +29,7 @@
 
 static FILE *open_in(const char *dir, const char *name, const char *mode)
 {
-    char path[PATH_MAX];
+    char path[PATH_MAX + 128];
     FILE *f;
     snprintf(path, sizeof path, "%s/%s", dir, name);
     f = fopen(path, mode);
@@ -34,33 +38,57 @@ static FILE *open_in(const char *dir, const char *name, const char *mode)
     return f;
 }
 
-static int run_lockstep(const struct app_opts *o)
+static int close_ok(FILE *f, const char *dir, const char *name)
+{
+    int bad = !f || ferror(f);
+    if (f && fclose(f) != 0)
+        bad = 1;
+    if (bad)
+        fprintf(stderr, "hil_bench: cannot write %s/%s: %s\n", dir, name, strerror(errno));
+    return !bad;
+}
+
+/* The run into dir (the temporary directory); 0, 1 (the run failed) or 2
+ * (the scenario was refused). */
+static int run_lockstep(const struct app_opts *o, const char *dir)
 {
     static struct hil_rig rig;
-    FILE *log = open_in(o->out, "frames.log", "w"), *csv = open_in(o->out, "signals.csv", "w"),
-         *meta = open_in(o->out, "meta.json", "w");
+    FILE *log = open_in(dir, "frames.log", "w"), *csv = open_in(dir, "signals.csv", "w"),
+         *meta = open_in(dir, "meta.json", "w");
     double t0, wall;
-    int st;
-    if (!log || !csv || !meta)
+    int st, ok;
+    if (!log || !csv || !meta) {
+        if (log)
+            fclose(log);
+        if (csv)
+            fclose(csv);
+        if (meta)
+            fclose(meta);
         return 1;
+    }
     st = hil_rig_init(&rig, &o->cfg, log, csv);
-    if (st != HIL_OK) {
-        fprintf(stderr, "hil_bench: invalid scenario parameters (%s)%s%s\n", hil_status_str(st),
-                rig.plant.err[0] ? ": " : "", rig.plant.err);
+    if (st != HIL_OK || app_setup_law(&rig.ctrl, &o->cfg) != 0) {
+        if (st != HIL_OK)
+            fprintf(stderr, "hil_bench: the scenario is refused: %s\n", rig.err);
+        fclose(log);
+        fclose(csv);
+        fclose(meta);
         return 2;
     }
-    app_setup_law(&rig.ctrl, &o->cfg);
     t0 = app_now();
     st = hil_rig_run(&rig);
     wall = app_now() - t0;
     hil_rig_write_meta(&rig, meta, wall);
-    fclose(log);
-    fclose(csv);
-    fclose(meta);
+    ok = close_ok(log, dir, "frames.log");
+    ok = close_ok(csv, dir, "signals.csv") && ok;
+    ok = close_ok(meta, dir, "meta.json") && ok;
     if (st != HIL_OK) {
-        fprintf(stderr, "hil_bench: run failed (%s)\n", hil_status_str(st));
+        fprintf(stderr, "hil_bench: run failed at t = %.6f s (%s): %s\n", rig.st.cycles * o->cfg.ctrl.T,
+                hil_status_str(st), rig.err);
         return 1;
     }
+    if (!ok)
+        return 1;
     printf("hil_bench: lockstep, %llu cycles (%.3f s simulated) in %.3f s wall (%.1fx real time); "
            "frames sent %llu, lost %llu, logged %llu; final tip angle %.4f rad (reference %.4f)%s\n",
            (unsigned long long)rig.st.cycles, rig.st.cycles * o->cfg.ctrl.T, wall,
@@ -179,7 +207,21 @@ static int merge_signals(const char *dir)
     return rc;
 }
 
-static int run_processes(const struct app_opts *o, int realtime)
+/* Copies DIR/NAME.txt (a node's report) to stderr: the temporary directory
+ * it is in goes away with a failed run. */
+static void echo_report(const char *dir, const char *name)
+{
+    char line[512], file[80];
+    FILE *f;
+    snprintf(file, sizeof file, "%s.txt", name);
+    f = open_in(dir, file, "r");
+    while (f && fgets(line, sizeof line, f))
+        fprintf(stderr, "  %s: %s", name, line);
+    if (f)
+        fclose(f);
+}
+
+static int run_processes(const struct app_opts *o, const char *out, int realtime)
 {
     char prio[16];
     static const char *nodes[] = {"hil_ctrl", "hil_plant", "hil_drive", "hil_imu", "hil_candump"};
@@ -216,10 +258,10 @@ static int run_processes(const struct app_opts *o, int realtime)
         } else
             snprintf(bus[i], sizeof bus[i], "udp:%u:%d:5", port, i);
     }
-    snprintf(scen, sizeof scen, "%s/scenario.txt", o->out);
-    snprintf(logp, sizeof logp, "%s/frames.log", o->out);
-    snprintf(csvp, sizeof csvp, "%s/controller.csv", o->out);
-    snprintf(truthp, sizeof truthp, "%s/truth.csv", o->out);
+    snprintf(scen, sizeof scen, "%s/scenario.txt", out);
+    snprintf(logp, sizeof logp, "%s/frames.log", out);
+    snprintf(csvp, sizeof csvp, "%s/controller.csv", out);
+    snprintf(truthp, sizeof truthp, "%s/truth.csv", out);
     snprintf(prio, sizeof prio, "%d", o->rt_priority);
     f = fopen(scen, "w");
     if (!f || hil_rig_config_write(&o->cfg, f) != HIL_OK) {
@@ -234,16 +276,26 @@ static int run_processes(const struct app_opts *o, int realtime)
             a[8] = prio;
         }
         unlink(logp); /* its appearance below means the new logger is up */
-        pid[4] = spawn(o->out, "hil_candump", a);
+        pid[4] = spawn(out, "hil_candump", a);
     }
     /* the logger listens before anyone sends (the nodes' boot-up heartbeats
      * are their first frames): it opens its log once its socket is bound */
-    for (i = 0; i < 1000 && access(logp, F_OK) != 0; i++)
-        pause_s(0.01);
-    if (access(logp, F_OK) != 0) {
-        fprintf(stderr, "hil_bench: hil_candump did not start within 10 s (see %s/hil_candump.txt)\n", o->out);
-        kill(pid[4], SIGTERM);
-        return 1;
+    {
+        int exited = 0;
+        for (i = 0; i < 1000 && !exited && access(logp, F_OK) != 0; i++) {
+            pause_s(0.01);
+            exited = waitpid(pid[4], &status, WNOHANG) == pid[4];
+        }
+        if (access(logp, F_OK) != 0) {
+            fprintf(stderr, "hil_bench: hil_candump %s; its report:\n",
+                    exited ? "exited before its log was open" : "did not start within 10 s");
+            if (!exited) {
+                kill(pid[4], SIGTERM);
+                waitpid(pid[4], &status, 0);
+            }
+            echo_report(out, nodes[4]);
+            return 1;
+        }
     }
     for (i = 1; i < 4; i++) {
         char *a[] = {bin[i], "--bus", bus[i], "--scenario", scen, "--idle-exit", "1", NULL, NULL, NULL, NULL, NULL};
@@ -256,7 +308,7 @@ static int run_processes(const struct app_opts *o, int realtime)
             a[k++] = "--csv";
             a[k++] = truthp;
         }
-        pid[i] = spawn(o->out, nodes[i], a);
+        pid[i] = spawn(out, nodes[i], a);
     }
     pause_s(0.2);
     t0 = app_now();
@@ -277,19 +329,22 @@ static int run_processes(const struct app_opts *o, int realtime)
             a[n++] = prio;
         }
         a[n] = NULL;
-        pid[0] = spawn(o->out, "hil_ctrl", a);
+        pid[0] = spawn(out, "hil_ctrl", a);
     }
     for (i = 0; i < 5; i++) {
         if (pid[i] < 0 || waitpid(pid[i], &status, 0) < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-            fprintf(stderr, "hil_bench: %s failed (see %s/%s.txt)\n", nodes[i], o->out, nodes[i]);
+            fprintf(stderr, "hil_bench: %s failed; its report:\n", nodes[i]);
+            echo_report(out, nodes[i]);
             rc = 1;
         }
     }
-    if (merge_signals(o->out) != 0) {
+    if (merge_signals(out) != 0) {
         fprintf(stderr, "hil_bench: controller.csv and truth.csv do not line up\n");
         rc = 1;
     }
-    meta = open_in(o->out, "meta.json", "w");
+    if (rc)
+        return rc;
+    meta = open_in(out, "meta.json", "w");
     if (!meta)
         return 1;
     hil_rig_meta_begin(&o->cfg, realtime ? "realtime" : "lockstep-processes", meta);
@@ -298,11 +353,12 @@ static int run_processes(const struct app_opts *o, int realtime)
     for (i = 0; i < 5; i++) {
         char name[64];
         snprintf(name, sizeof name, "%s.txt", nodes[i]);
-        report_json(meta, o->out, name, i == 4);
+        report_json(meta, out, name, i == 4);
     }
     fprintf(meta, "  }\n}\n");
-    fclose(meta);
-    f = open_in(o->out, "hil_ctrl.txt", "r");
+    if (!close_ok(meta, out, "meta.json"))
+        rc = 1;
+    f = open_in(out, "hil_ctrl.txt", "r");
     while (f && fgets(exe, sizeof exe, f))
         if (strncmp(exe, "HIL_JITTER", 10) == 0 || strncmp(exe, "HIL_CTRL", 8) == 0)
             fputs(exe, stdout);
@@ -311,10 +367,105 @@ static int run_processes(const struct app_opts *o, int realtime)
     return rc;
 }
 
+/* Every file a run writes into DIR (lockstep: the first three). */
+static const char *const outputs[] = {"frames.log", "signals.csv", "meta.json", "scenario.txt", "controller.csv",
+                                      "truth.csv", "hil_ctrl.txt", "hil_plant.txt", "hil_drive.txt", "hil_imu.txt",
+                                      "hil_candump.txt"};
+#define NOUTPUTS (sizeof outputs / sizeof outputs[0])
+
+/* The run goes into a temporary directory beside DIR (DIR's parent,
+ * ".NAME.hil-tmp-XXXXXX"), made here; DIR itself is not touched until the
+ * run succeeded (out_commit). 0, or -1 with the reason printed. */
+static int out_begin(const char *out, char *tmp, size_t cap)
+{
+    char parent[PATH_MAX], *slash, *p;
+    const char *base;
+    size_t len = strlen(out);
+    while (len > 1 && out[len - 1] == '/')
+        len--;
+    if (len == 0 || len >= sizeof parent || (len == 1 && out[0] == '/')) {
+        fprintf(stderr, "hil_bench: --out '%s': wants a directory path (not /) shorter than %d bytes\n", out, PATH_MAX);
+        return -1;
+    }
+    memcpy(parent, out, len);
+    parent[len] = '\0';
+    slash = strrchr(parent, '/');
+    if (slash) {
+        *slash = '\0';
+        base = out + (slash - parent) + 1;
+        if (slash == parent)
+            strcpy(parent, "/");
+    } else {
+        base = out;
+        strcpy(parent, ".");
+    }
+    /* the parent's own parents, as mkdir -p */
+    for (p = parent + 1; *p; p++)
+        if (*p == '/') {
+            *p = '\0';
+            if (mkdir(parent, 0777) != 0 && errno != EEXIST) {
+                perror(parent);
+                return -1;
+            }
+            *p = '/';
+        }
+    if (mkdir(parent, 0777) != 0 && errno != EEXIST) {
+        perror(parent);
+        return -1;
+    }
+    if ((size_t)snprintf(tmp, cap, "%s/.%.*s.hil-tmp-XXXXXX", parent, (int)(len - (size_t)(base - out)), base) >= cap) {
+        fprintf(stderr, "hil_bench: --out '%s': path too long\n", out);
+        return -1;
+    }
+    if (!mkdtemp(tmp)) {
+        fprintf(stderr, "hil_bench: cannot create a temporary directory in %s: %s\n", parent, strerror(errno));
+        return -1;
+    }
+    return 0;
+}
+
+/* Removes the run's files and the temporary directory. */
+static void out_abort(const char *tmp)
+{
+    char path[PATH_MAX + 32];
+    size_t i;
+    for (i = 0; i < NOUTPUTS; i++) {
+        snprintf(path, sizeof path, "%s/%s", tmp, outputs[i]);
+        unlink(path);
+    }
+    if (rmdir(tmp) != 0)
+        fprintf(stderr, "hil_bench: cannot remove %s: %s\n", tmp, strerror(errno));
+}
+
+/* Moves the run's files from tmp into out (made if missing): the outputs of
+ * an earlier run this run does not write are removed first, so DIR holds one
+ * run; other files in DIR are left alone. 0, or -1 with the reason printed. */
+static int out_commit(const char *tmp, const char *out)
+{
+    char from[PATH_MAX + 32], to[PATH_MAX + 32];
+    size_t i;
+    if (mkdir(out, 0777) != 0 && errno != EEXIST) {
+        perror(out);
+        return -1;
+    }
+    for (i = 0; i < NOUTPUTS; i++) {
+        snprintf(from, sizeof from, "%s/%s", tmp, outputs[i]);
+        snprintf(to, sizeof to, "%s/%s", out, outputs[i]);
+        if (access(from, F_OK) != 0)
+            unlink(to);
+        else if (rename(from, to) != 0) {
+            fprintf(stderr, "hil_bench: cannot move %s to %s: %s\n", from, to, strerror(errno));
+            return -1;
+        }
+    }
+    return rmdir(tmp) == 0 ? 0 : -1;
+}
+
 int main(int argc, char **argv)
 {
     struct app_opts o;
-    int processes = 0, realtime = 0, i;
+    char tmp[PATH_MAX];
+    int processes = 0, realtime = 0, i, rc;
     for (i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--processes") == 0)
             processes = 1;
@@ -338,10 +489,26 @@ int main(int argc, char **argv)
               "                      the cycle jitter p50/p99/max and the deadline misses\n");
     if (!o.out)
         o.out = "hil-run";
-    if (mkdir(o.out, 0777) != 0 && errno != EEXIST) {
-        perror(o.out);
-        return 1;
+    if (processes) {
+        /* the nodes validate the scenario each in its own process; refusing
+         * it here says why once, before any process or file exists */
+        static struct hil_rig check;
+        if (hil_rig_init(&check, &o.cfg, NULL, NULL) != HIL_OK) {
+            fprintf(stderr, "hil_bench: the scenario is refused: %s\n", check.err);
+            return 2;
+        }
+        if (app_setup_law(&check.ctrl, &o.cfg) != 0)
+            return 2;
     }
+    if (out_begin(o.out, tmp, sizeof tmp) != 0)
+        return 1;
     signal(SIGPIPE, SIG_IGN);
-    return processes ? run_processes(&o, realtime) : run_lockstep(&o);
+    rc = processes ? run_processes(&o, tmp, realtime) : run_lockstep(&o, tmp);
+    if (rc == 0 && out_commit(tmp, o.out) == 0)
+        return 0;
+    out_abort(tmp);
+    if (rc == 0)
+        rc = 1;
+    fprintf(stderr, "hil_bench: nothing written; %s is as it was\n", o.out);
+    return rc;
 }

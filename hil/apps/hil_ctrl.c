@@ -8,6 +8,7 @@
  * SYNC; each wait is
  * bounded (--step-timeout, default 0.1 s; a timeout counts as a missed
  * input). For slow hosts such as a TCG-emulated guest. */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include "app_common.h"
@@ -111,9 +112,15 @@ int main(int argc, char **argv)
         fprintf(stderr, "hil_ctrl: invalid parameters\n");
         return 2;
     }
-    app_setup_law(&c, &o.cfg);
+    if (app_setup_law(&c, &o.cfg) != 0)
+        return 2;
     T = o.cfg.ctrl.T;
     n = o.cycles > 0 ? o.cycles : (long)(o.cfg.duration / T + 0.5);
+    if ((double)n > HIL_RIG_DURATION_MAX / T + 0.5) {
+        fprintf(stderr, "hil_ctrl: --cycles %ld: wants at most %.0f cycles (%g s of simulated time at T = %g s)\n", n,
+                floor(HIL_RIG_DURATION_MAX / T + 0.5), HIL_RIG_DURATION_MAX, T);
+        return 2;
+    }
     late = calloc((size_t)n, sizeof *late);
     if (!late)
         return 1;

@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include "frac/ptable.h"
 #include "hil/can.h"
 #include "plc_law.h"
 
@@ -110,6 +111,42 @@ int hil_plc_law_init_exp_a(struct hil_plc_law *L, double T, double I_M, double I
     return start(L, err, errlen);
 }
 
+/* err for a table ArmCtrl's _INIT refused: the failing field of the FRPT
+ * validation (frac_ptable_open: "crc32", "entry.values of entry 2 'A'", ...),
+ * else the entry of ArmCtrl's layout that failed (armctrl_params_from_table:
+ * missing, of the wrong size or out of range), else a value a block
+ * refused; each with
+ * ArmCtrl's StatusID. */
+static void describe_refusal(struct hil_plc_law *L, const unsigned char *b, unsigned long size, char *err,
+                             size_t errlen)
+{
+    frac_ptable t;
+    unsigned sid = (unsigned)L->a.out.StatusID;
+    int st = frac_ptable_open(&t, b, size);
+    if (!err || !errlen)
+        return;
+    if (st != FRAC_OK) {
+        char ename[FRAC_PTABLE_NAME_LEN + 1] = "";
+        if (t.fail_entry >= 0 &&
+            FRAC_PTABLE_HEADER_SIZE + (unsigned long)(t.fail_entry + 1) * FRAC_PTABLE_ENTRY_SIZE <= size)
+            memcpy(ename, b + FRAC_PTABLE_HEADER_SIZE + (unsigned long)t.fail_entry * FRAC_PTABLE_ENTRY_SIZE,
+                   FRAC_PTABLE_NAME_LEN);
+        if (t.fail_entry >= 0)
+            snprintf(err, errlen, "%s (field %s of entry %ld '%s'; ArmCtrl StatusID %u)", frac_status_str(st),
+                     t.fail_field, t.fail_entry, ename, sid);
+        else
+            snprintf(err, errlen, "%s (field %s; ArmCtrl StatusID %u)", frac_status_str(st), t.fail_field, sid);
+        return;
+    }
+    st = armctrl_params_from_table(&L->store, &t);
+    if (st != FRAC_OK)
+        snprintf(err, errlen, "%s (entry '%s': missing, of the wrong size or out of range for ArmCtrl's layout, "
+                 "plc_blocks/programs/ArmCtrl.h; ArmCtrl StatusID %u)", frac_status_str(st), L->store.fail_entry, sid);
+    else
+        snprintf(err, errlen, "a block refused a value at ArmCtrl's _INIT (ArmCtrl StatusID %u; FracCtrl.var "
+                 "names the codes)", sid);
+}
+
 int hil_plc_law_init_table(struct hil_plc_law *L, double T, const void *table, unsigned long size, char *err,
                            size_t errlen)
 {
@@ -120,6 +157,8 @@ int hil_plc_law_init_table(struct hil_plc_law *L, double T, const void *table, u
     L->P = &L->store.par;
     armctrl_program_table(&L->a, &L->pa, table, (UDINT)size, &L->store, &L->drive_img, &L->imu_img, &L->ctrl_img);
     st = start(L, err, errlen);
+    if (st == HIL_E_STATE && L->started && L->a.fault)
+        describe_refusal(L, (const unsigned char *)table, size, err, errlen);
     if (st == HIL_OK && fabs((double)L->P->CycleTime - T) > 1e-9) {
         hil_plc_law_stop(L);
         if (err && errlen)

@@ -85,7 +85,8 @@ int hil_plc_law_init_exp_a(struct hil_plc_law *L, double T, double I_M, double I
  * outlive the law) for cycle T = 1.2 ms; starts the runtime. Returns HIL_OK;
  * HIL_E_ARG (T not 1.2 ms, NULL, or the table's "ts" is not T); HIL_E_STATE
  * with the message in err: either the runtime refused its configuration
- * (L not started), or ArmCtrl's _INIT refused the table - then L is started
+ * (L not started), or ArmCtrl's _INIT refused the table (err names the
+ * failing field or entry and the StatusID) - then L is started
  * and usable as a law that never enables the torque and returns minus the
  * StatusID every cycle. */
 int hil_plc_law_init_table(struct hil_plc_law *L, double T, const void *table, unsigned long size, char *err,

@@ -4,6 +4,20 @@
 #include <string.h>
 #include "hil/candump.h"
 
+/* The interface field of the grammar (hil/candump.h): 1..15 graphic ASCII
+ * bytes (0x21..0x7E), none of them '(', ')' or '#'. Shared by writer and
+ * reader. */
+static int iface_ok(const char *s, size_t len)
+{
+    size_t i;
+    if (len == 0 || len >= HIL_CANDUMP_IFACE_MAX)
+        return 0;
+    for (i = 0; i < len; i++)
+        if (s[i] < 0x21 || s[i] > 0x7E || s[i] == '(' || s[i] == ')' || s[i] == '#')
+            return 0;
+    return 1;
+}
+
 /* Writes v as exactly `digits` decimal digits (zero padded) ending before
  * end; returns the start. v < 10^digits is the caller's guarantee. */
 static char *put_dec(char *end, unsigned long long v, int digits)
@@ -27,10 +41,10 @@ int hil_candump_format(char *buf, size_t n, double t, const char *iface,
     size_t il, len, need;
     char *p;
     uint32_t id;
-    if (!buf || !iface || !f || !(t >= 0.0) || t > 9.0e15)
+    if (!buf || !iface || !f || !(t >= 0.0) || t > HIL_CANDUMP_T_MAX)
         return HIL_E_ARG;
     il = strlen(iface);
-    if (il == 0 || il >= HIL_CANDUMP_IFACE_MAX || strpbrk(iface, " \t\r\n()#"))
+    if (!iface_ok(iface, il))
         return HIL_E_ARG;
     st = hil_can_frame_check(f);
     if (st != HIL_OK)
@@ -44,6 +58,9 @@ int hil_candump_format(char *buf, size_t n, double t, const char *iface,
         sec++;
         usec -= 1000000;
     }
+    /* the reader's bound, on the value as the line will carry it */
+    if ((double)sec + (double)usec * 1e-6 > HIL_CANDUMP_T_MAX)
+        return HIL_E_ARG;
     {
         /* seconds: at least 10 digits (candump's %010ld), more if needed */
         int sd = 10;
@@ -100,7 +117,7 @@ static int hexval(char c)
 int hil_candump_parse(const char *line, double *t, char *iface, struct hil_can_frame *f)
 {
     const char *p, *q;
-    double sec = 0.0, frac = 0.0, scale = 0.1;
+    double sec = 0.0, usec = 0.0;
     uint32_t id = 0;
     int ndig = 0, nbytes = 0;
     size_t il;
@@ -109,27 +126,24 @@ int hil_candump_parse(const char *line, double *t, char *iface, struct hil_can_f
     p = line;
     if (*p++ != '(')
         return HIL_E_FORMAT;
-    if (*p < '0' || *p > '9')
-        return HIL_E_FORMAT;
-    while (*p >= '0' && *p <= '9' && ndig < 16) {
+    while (*p >= '0' && *p <= '9' && ndig < 17) {
         sec = sec * 10.0 + (*p++ - '0');
         ndig++;
     }
-    if (*p++ != '.')
+    if (ndig == 0 || ndig > 16 || *p++ != '.')
         return HIL_E_FORMAT;
-    ndig = 0;
-    while (*p >= '0' && *p <= '9' && ndig < 9) {
-        frac += scale * (*p++ - '0');
-        scale *= 0.1;
-        ndig++;
+    for (ndig = 0; ndig < 6; ndig++, p++) {
+        if (*p < '0' || *p > '9')
+            return HIL_E_FORMAT;
+        usec = usec * 10.0 + (*p - '0');
     }
-    if (ndig == 0 || *p++ != ')' || *p++ != ' ')
+    if (*p++ != ')' || *p++ != ' ' || sec + usec * 1e-6 > HIL_CANDUMP_T_MAX)
         return HIL_E_FORMAT;
     q = strchr(p, ' ');
-    if (!q || q == p)
+    if (!q)
         return HIL_E_FORMAT;
     il = (size_t)(q - p);
-    if (il >= HIL_CANDUMP_IFACE_MAX)
+    if (!iface_ok(p, il))
         return HIL_E_FORMAT;
     memcpy(iface, p, il);
     iface[il] = '\0';
@@ -163,6 +177,6 @@ int hil_candump_parse(const char *line, double *t, char *iface, struct hil_can_f
     if (*p != '\0')
         return HIL_E_FORMAT;
     f->dlc = (uint8_t)nbytes;
-    *t = sec + frac;
+    *t = sec + usec * 1e-6;
     return HIL_OK;
 }

@@ -72,12 +72,51 @@ void hil_rig_config_default(struct hil_rig_config *c)
     hil_ctrl_params_default(&c->ctrl);
 }
 
+/* Sets c->err to "KEY = 'VALUE': WHY" and returns status. */
+static int bad_value(struct hil_rig_config *c, int status, const char *key, const char *value, const char *why)
+{
+    snprintf(c->err, sizeof c->err, "%s = '%.60s': %s", key, value, why);
+    return status;
+}
+
+/* What a key of type t accepts, for the messages. */
+static const char *type_wants(int t)
+{
+    switch (t) {
+    case K_DBL:
+    case K_REAL: return "wants a finite number";
+    case K_INT: return "wants an integer";
+    case K_UNS: return "wants an integer 0..4294967295";
+    default: return "wants an integer 0..18446744073709551615";
+    }
+}
+
+/* c->err for an unknown key: the keys of its group ("drive.", ...) when the
+ * group exists, else the top-level keys and the groups. */
+static int unknown_key(struct hil_rig_config *c, const char *key)
+{
+    const char *dot = strchr(key, '.');
+    size_t i, n, group = dot ? (size_t)(dot - key) + 1 : 0, hits = 0;
+    n = (size_t)snprintf(c->err, sizeof c->err, "unknown key '%.40s'", key);
+    for (i = 0; i < NKEYS && group; i++)
+        if (strncmp(keys[i].name, key, group) == 0 && n < sizeof c->err)
+            n += (size_t)snprintf(c->err + n, sizeof c->err - n, "%s%s", hits++ ? ", " : "; the keys of this group are ",
+                                  keys[i].name);
+    if (!hits && n < sizeof c->err)
+        snprintf(c->err + n, sizeof c->err - n,
+                 "; the keys are T, duration, plant, frame_loss, bus_seed, inject_every, "
+                 "imu_dropout_start/end, drive_dropout_start/end, drive_busoff_start/end, ctrl.law, plant.table, "
+                 "ctrl.table and the groups drive.*, imu.*, plant.*, ctrl.* (docs/hil.md)");
+    return HIL_E_UNKNOWN_ID;
+}
+
 int hil_rig_config_set(struct hil_rig_config *c, const char *key, const char *value)
 {
     size_t i;
     char *end;
     if (!c || !key || !value)
         return HIL_E_ARG;
+    c->err[0] = '\0';
     if (strcmp(key, "plant") == 0) {
         if (strcmp(value, "rigid") == 0)
             c->plant_p.model = HIL_PLANT_RIGID;
@@ -86,13 +125,13 @@ int hil_rig_config_set(struct hil_rig_config *c, const char *key, const char *va
         else if (strcmp(value, "arm") == 0)
             c->plant_p.model = HIL_PLANT_ARM;
         else
-            return HIL_E_FORMAT;
+            return bad_value(c, HIL_E_FORMAT, key, value, "wants rigid, twomass or arm");
         strcpy(c->plant, value);
         return HIL_OK;
     }
     if (strcmp(key, "ctrl.law") == 0) {
         if (strcmp(value, "pd") != 0 && strcmp(value, "armctrl_a") != 0 && strcmp(value, "armctrl") != 0)
-            return HIL_E_FORMAT;
+            return bad_value(c, HIL_E_FORMAT, key, value, "wants pd, armctrl_a or armctrl");
         strcpy(c->law, value);
         return HIL_OK;
     }
@@ -100,7 +139,7 @@ int hil_rig_config_set(struct hil_rig_config *c, const char *key, const char *va
         /* a file path: not empty, no '#' (comment) and fits the field */
         char *dst = key[0] == 'p' ? c->plant_p.table : c->ctrl_table;
         if (!*value || strchr(value, '#') || strlen(value) >= HIL_PLANT_PATH_MAX)
-            return HIL_E_FORMAT;
+            return bad_value(c, HIL_E_FORMAT, key, value, "wants a file path, not empty, without '#', shorter than 256 bytes");
         strcpy(dst, value);
         return HIL_OK;
     }
@@ -109,7 +148,7 @@ int hil_rig_config_set(struct hil_rig_config *c, const char *key, const char *va
         errno = 0;
         v = strtod(value, &end);
         if (errno || end == value || *end || !(v > 0.0) || !isfinite(v))
-            return HIL_E_FORMAT;
+            return bad_value(c, HIL_E_FORMAT, key, value, "wants the cycle time in seconds, a finite number > 0");
         c->drive.T = c->plant_p.T = c->ctrl.T = v;
         return HIL_OK;
     }
@@ -122,7 +161,15 @@ int hil_rig_config_set(struct hil_rig_config *c, const char *key, const char *va
         if (keys[i].type == K_DBL || keys[i].type == K_REAL) {
             double v = strtod(value, &end);
             if (errno || end == value || *end || !isfinite(v))
-                return HIL_E_FORMAT;
+                return bad_value(c, HIL_E_FORMAT, key, value, type_wants(keys[i].type));
+            if (p == &c->duration && !(v > 0.0 && v <= HIL_RIG_DURATION_MAX)) {
+                char why[160];
+                snprintf(why, sizeof why, "wants simulated seconds in (0, %g] (the bound keeps frames.log "
+                         "below ~%.0f MB; docs/hil.md)", HIL_RIG_DURATION_MAX, HIL_RIG_DURATION_MAX * 0.45);
+                return bad_value(c, HIL_E_RANGE, key, value, why);
+            }
+            if (p == &c->frame_loss && !(v >= 0.0 && v < 1.0))
+                return bad_value(c, HIL_E_RANGE, key, value, "wants a probability in [0, 1)");
             if (keys[i].type == K_DBL)
                 *(double *)p = v;
             else
@@ -130,15 +177,15 @@ int hil_rig_config_set(struct hil_rig_config *c, const char *key, const char *va
         } else if (keys[i].type == K_INT) {
             long v = strtol(value, &end, 10);
             if (errno || end == value || *end || v < INT_MIN || v > INT_MAX)
-                return HIL_E_FORMAT;
+                return bad_value(c, HIL_E_FORMAT, key, value, type_wants(keys[i].type));
             *(int *)p = (int)v;
         } else {
             unsigned long long v;
             if (!isdigit((unsigned char)value[0]))
-                return HIL_E_FORMAT;
+                return bad_value(c, HIL_E_FORMAT, key, value, type_wants(keys[i].type));
             v = strtoull(value, &end, 10);
             if (errno || *end || (keys[i].type == K_UNS && v > 0xFFFFFFFFull))
-                return HIL_E_FORMAT;
+                return bad_value(c, HIL_E_FORMAT, key, value, type_wants(keys[i].type));
             if (keys[i].type == K_UNS)
                 *(unsigned *)p = (unsigned)v;
             else
@@ -146,7 +193,7 @@ int hil_rig_config_set(struct hil_rig_config *c, const char *key, const char *va
         }
         return HIL_OK;
     }
-    return HIL_E_UNKNOWN_ID;
+    return unknown_key(c, key);
 }
 
 static char *trim(char *s)
@@ -169,19 +216,28 @@ int hil_rig_config_load(struct hil_rig_config *c, const char *path, int *line_no
         return HIL_E_ARG;
     if (line_no)
         *line_no = 0;
+    c->err[0] = '\0';
     f = fopen(path, "r");
-    if (!f)
+    if (!f) {
+        snprintf(c->err, sizeof c->err, "cannot open the scenario file: %s", strerror(errno));
         return HIL_E_IO;
+    }
     while (fgets(line, sizeof line, f)) {
-        char *hash = strchr(line, '#'), *eq, *k, *v;
+        char *hash, *eq, *k, *v;
         n++;
-        if (hash)
+        if (!strchr(line, '\n') && !feof(f)) {
+            snprintf(c->err, sizeof c->err, "line longer than %d bytes", (int)sizeof line - 2);
+            st = HIL_E_FORMAT;
+            break;
+        }
+        if ((hash = strchr(line, '#')) != NULL)
             *hash = '\0';
         k = trim(line);
         if (!*k)
             continue;
         eq = strchr(k, '=');
         if (!eq) {
+            snprintf(c->err, sizeof c->err, "'%.60s' is not a 'key = value' line", k);
             st = HIL_E_FORMAT;
             break;
         }
@@ -213,6 +269,13 @@ static int drive_bus_off(const struct hil_rig *r, double now)
     return now >= r->cfg.drive_busoff_start && now < r->cfg.drive_busoff_end;
 }
 
+/* Sets r->err to msg and returns status. */
+static int rig_fail(struct hil_rig *r, int status, const char *msg)
+{
+    snprintf(r->err, sizeof r->err, "%s", msg);
+    return status;
+}
+
 static int enqueue(struct hil_rig *r, const struct hil_out *out, int from)
 {
     double now = (double)(r->ctrl.cycle ? r->ctrl.cycle - 1 : 0) * r->cfg.ctrl.T;
@@ -233,7 +296,7 @@ static int enqueue(struct hil_rig *r, const struct hil_out *out, int from)
             continue;
         }
         if (r->q_len >= HIL_RIG_QUEUE)
-            return HIL_E_FULL;
+            return rig_fail(r, HIL_E_FULL, "the bus queue (HIL_RIG_QUEUE frames) overflowed");
         at = (r->q_head + r->q_len) % HIL_RIG_QUEUE;
         r->q[at] = out->f[i];
         r->q_from[at] = from;
@@ -245,21 +308,34 @@ static int enqueue(struct hil_rig *r, const struct hil_out *out, int from)
 int hil_rig_init(struct hil_rig *r, const struct hil_rig_config *c, FILE *log, FILE *csv)
 {
     struct hil_out out, out2;
-    if (!r || !c || !(c->duration > 0.0) || !isfinite(c->duration) ||
-        !(c->frame_loss >= 0.0 && c->frame_loss < 1.0) || c->drive.T != c->ctrl.T ||
-        c->plant_p.T != c->ctrl.T)
+    if (!r || !c)
         return HIL_E_ARG;
     memset(r, 0, sizeof *r);
+    if (!(c->duration > 0.0 && c->duration <= HIL_RIG_DURATION_MAX)) {
+        snprintf(r->err, sizeof r->err, "duration = %g: wants simulated seconds in (0, %g]", c->duration,
+                 HIL_RIG_DURATION_MAX);
+        return HIL_E_ARG;
+    }
+    if (!(c->frame_loss >= 0.0 && c->frame_loss < 1.0))
+        return rig_fail(r, HIL_E_ARG, "frame_loss: wants a probability in [0, 1)");
+    if (c->drive.T != c->ctrl.T || c->plant_p.T != c->ctrl.T)
+        return rig_fail(r, HIL_E_ARG, "the drive's, the plant's and the controller's T differ (set T)");
     r->cfg = *c;
     out.n = 0;
     out2.n = 0;
-    if (hil_drive_init(&r->drive, &c->drive, &out) != HIL_OK ||
-        hil_imu_init(&r->imu, &c->imu, &out2) != HIL_OK ||
-        hil_plant_init(&r->plant, &c->plant_p) != HIL_OK || hil_ctrl_init(&r->ctrl, &c->ctrl) != HIL_OK)
-        return HIL_E_ARG;
+    if (hil_drive_init(&r->drive, &c->drive, &out) != HIL_OK)
+        return rig_fail(r, HIL_E_ARG, "the drive.* parameters are out of range (docs/hil.md, Drive)");
+    if (hil_imu_init(&r->imu, &c->imu, &out2) != HIL_OK)
+        return rig_fail(r, HIL_E_ARG, "the imu.* parameters are out of range (docs/hil.md, IMU)");
+    if (hil_plant_init(&r->plant, &c->plant_p) != HIL_OK)
+        return rig_fail(r, HIL_E_ARG,
+                        r->plant.err[0] ? r->plant.err : "the plant.* parameters are out of range (docs/hil.md, Plant)");
+    if (hil_ctrl_init(&r->ctrl, &c->ctrl) != HIL_OK)
+        return rig_fail(r, HIL_E_ARG, "the ctrl.* parameters are out of range (docs/hil.md, Controller)");
     hil_rng_seed(&r->bus_rng, c->bus_seed);
     r->log = log;
     r->csv = csv;
+    r->log_max = HIL_RIG_LOG_MAX;
     /* the boot-up heartbeats go out with the first cycle */
     enqueue(r, &out, FROM_DRIVE);
     enqueue(r, &out2, FROM_IMU);
@@ -269,15 +345,24 @@ int hil_rig_init(struct hil_rig *r, const struct hil_rig_config *c, FILE *log, F
     return HIL_OK;
 }
 
-static void log_frame(struct hil_rig *r, const struct hil_can_frame *f)
+/* Logs f; HIL_E_FULL once the log would pass HIL_RIG_LOG_MAX. */
+static int log_frame(struct hil_rig *r, const struct hil_can_frame *f)
 {
     char line[HIL_CANDUMP_LINE_MAX];
     double t = (double)(r->ctrl.cycle ? r->ctrl.cycle - 1 : 0) * r->cfg.ctrl.T + r->slot * 1e-6;
+    int len;
     r->slot++;
-    if (r->log && hil_candump_format(line, sizeof line, t, "vcan0", f) > 0) {
+    if (r->log && (len = hil_candump_format(line, sizeof line, t, "vcan0", f)) > 0) {
+        if (r->log_bytes + (unsigned long)len > r->log_max) {
+            snprintf(r->err, sizeof r->err, "frames.log reached its bound of %lu bytes at t = %.6f s; "
+                     "shorten duration (docs/hil.md, Bounds of a run)", r->log_max, t);
+            return HIL_E_FULL;
+        }
         fputs(line, r->log);
+        r->log_bytes += (unsigned long)len;
         r->st.frames_logged++;
     }
+    return HIL_OK;
 }
 
 static int drain(struct hil_rig *r)
@@ -289,9 +374,10 @@ static int drain(struct hil_rig *r)
         r->q_head = (r->q_head + 1) % HIL_RIG_QUEUE;
         r->q_len--;
         if (++guard > 10 * HIL_RIG_QUEUE)
-            return HIL_E_FULL;
+            return rig_fail(r, HIL_E_FULL, "the bus did not go idle within a cycle (frames kept answering frames)");
         r->st.frames_delivered++;
-        log_frame(r, &f);
+        if ((st = log_frame(r, &f)) != HIL_OK)
+            return st;
         for (n = 0; n < NODES; n++) {
             struct hil_out out;
             if (n == from)

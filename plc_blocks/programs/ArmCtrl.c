@@ -78,22 +78,31 @@ static void run_blocks(armctrl *a)
     a->out.TorqueSetpoint = tau;
 }
 
-/* Entry `name` of exactly rows x cols into dst. */
-static int get(const frac_ptable *t, const char *name, unsigned rows, unsigned cols, frac_real *dst)
+/* Records the entry `name` that failed in s->fail_entry; returns st. */
+static int failed(armctrl_table_storage *s, const char *name, int st)
 {
-    return frac_ptable_get(t, name, rows, cols, dst);
+    s->fail_entry = name;
+    return st;
+}
+
+/* Entry `name` of exactly rows x cols into dst. */
+static int get(armctrl_table_storage *s, const frac_ptable *t, const char *name, unsigned rows, unsigned cols,
+               frac_real *dst)
+{
+    int st = frac_ptable_get(t, name, rows, cols, dst);
+    return st == FRAC_OK ? st : failed(s, name, st);
 }
 
 /* Number of columns of a 4-row or 1-row entry (0 if missing). */
-static int cols_of(const frac_ptable *t, const char *name, unsigned rows, unsigned *cols)
+static int cols_of(armctrl_table_storage *s, const frac_ptable *t, const char *name, unsigned rows, unsigned *cols)
 {
     frac_ptable_entry e;
     int st = frac_ptable_find(t, name, &e);
     if (st != FRAC_OK) {
-        return st;
+        return failed(s, name, st);
     }
     if (e.rows != rows) {
-        return FRAC_E_DIM;
+        return failed(s, name, FRAC_E_DIM);
     }
     *cols = e.cols;
     return FRAC_OK;
@@ -101,15 +110,15 @@ static int cols_of(const frac_ptable *t, const char *name, unsigned rows, unsign
 
 /* Watchdog entry `name`, 1 x 2: max stale cycles (1..1e6), ramp rate [Nm/s]
  * (the ramp rate is validated by the Watchdog block at _INIT). */
-static int read_watchdog(const frac_ptable *t, const char *name, WatchdogParType *wd)
+static int read_watchdog(armctrl_table_storage *s, const frac_ptable *t, const char *name, WatchdogParType *wd)
 {
     frac_real v[2];
-    int st = get(t, name, 1, 2, v);
+    int st = get(s, t, name, 1, 2, v);
     if (st != FRAC_OK) {
         return st;
     }
     if (!(v[0] >= 1 && v[0] <= 1e6)) {
-        return FRAC_E_PARAM;
+        return failed(s, name, FRAC_E_PARAM);
     }
     wd->MaxStaleCycles = (UDINT)v[0];
     wd->RampRate = (REAL)v[1];
@@ -126,27 +135,28 @@ int armctrl_params_from_table(armctrl_table_storage *s, const frac_ptable *t)
     if (!s || !t) {
         return FRAC_E_NULL;
     }
+    s->fail_entry = "";
     p = &s->par;
     memset(p, 0, sizeof *p);
-    if ((st = get(t, "variant", 1, 1, v)) != FRAC_OK) {
+    if ((st = get(s, t, "variant", 1, 1, v)) != FRAC_OK) {
         return st;
     }
     if (!(v[0] >= 0 && v[0] <= ARMCTRL_EXP_D) || v[0] != FRAC_FLOOR(v[0])) {
-        return FRAC_E_PARAM;
+        return failed(s, "variant", FRAC_E_PARAM);
     }
     p->Variant = (armctrl_variant)(int)v[0];
-    if ((st = get(t, "ts", 1, 1, v)) != FRAC_OK) {
+    if ((st = get(s, t, "ts", 1, 1, v)) != FRAC_OK) {
         return st;
     }
     p->CycleTime = (REAL)v[0];
     /* feedforward: 4 rows of N samples, played by TrajLUT */
-    if ((st = cols_of(t, "ff", ARMCTRL_FF_N, &n_ff)) != FRAC_OK) {
+    if ((st = cols_of(s, t, "ff", ARMCTRL_FF_N, &n_ff)) != FRAC_OK) {
         return st;
     }
     if (n_ff > ARMCTRL_FF_MAX) {
-        return FRAC_E_DIM;
+        return failed(s, "ff", FRAC_E_DIM);
     }
-    if ((st = get(t, "ff", ARMCTRL_FF_N, n_ff, s->ff)) != FRAC_OK) {
+    if ((st = get(s, t, "ff", ARMCTRL_FF_N, n_ff, s->ff)) != FRAC_OK) {
         return st;
     }
     p->Ff.Channels = ARMCTRL_FF_N;
@@ -154,7 +164,7 @@ int armctrl_params_from_table(armctrl_table_storage *s, const frac_ptable *t)
     for (c = 0; c < ARMCTRL_FF_N; c++) {
         p->Ff.pData[c] = s->ff + c * n_ff;
     }
-    if ((st = get(t, "ff_grid", 1, 4, v)) != FRAC_OK) {
+    if ((st = get(s, t, "ff_grid", 1, 4, v)) != FRAC_OK) {
         return st;
     }
     p->Ff.T0 = v[0];
@@ -163,35 +173,35 @@ int armctrl_params_from_table(armctrl_table_storage *s, const frac_ptable *t)
     p->Ff.TMotionEnd = v[3];
     p->Ff.Ts = p->CycleTime;
     p->Ff.Interpolation = fracINTERP_LINEAR;
-    if ((st = get(t, "ff_lead", 1, 4, v)) != FRAC_OK) {
+    if ((st = get(s, t, "ff_lead", 1, 4, v)) != FRAC_OK) {
         return st;
     }
     for (c = 0; c < ARMCTRL_FF_N; c++) {
         if (v[c] != FRAC_FLOOR(v[c]) || v[c] > 1000 || v[c] < -1000) {
-            return FRAC_E_PARAM;
+            return failed(s, "ff_lead", FRAC_E_PARAM);
         }
         p->Ff.Lead[c] = (DINT)v[c];
     }
-    if ((st = get(t, "torque_limit", 1, 1, v)) != FRAC_OK) {
+    if ((st = get(s, t, "torque_limit", 1, 1, v)) != FRAC_OK) {
         return st;
     }
     p->TorqueLimit = (REAL)v[0];
-    if ((st = read_watchdog(t, "watchdog", &p->WdDrive)) != FRAC_OK) {
+    if ((st = read_watchdog(s, t, "watchdog", &p->WdDrive)) != FRAC_OK) {
         return st;
     }
     p->WdDrive.CycleTime = p->CycleTime;
     p->WdImu = p->WdDrive;
     if (frac_ptable_find(t, "watchdog_imu", &e) != FRAC_E_NOT_FOUND
-        && (st = read_watchdog(t, "watchdog_imu", &p->WdImu)) != FRAC_OK) {
+        && (st = read_watchdog(s, t, "watchdog_imu", &p->WdImu)) != FRAC_OK) {
         return st;
     }
     if (!uses_lqg(p)) {
-        if ((st = get(t, "pd", 1, 2, v)) != FRAC_OK) {
+        if ((st = get(s, t, "pd", 1, 2, v)) != FRAC_OK) {
             return st;
         }
         p->Kp = (REAL)v[0];
         p->Kd = (REAL)v[1];
-        if ((st = get(t, "friction", 1, 3, v)) != FRAC_OK) {
+        if ((st = get(s, t, "friction", 1, 3, v)) != FRAC_OK) {
             return st;
         }
         p->Friction.Model = fracFRICTION_LINEAR;
@@ -200,18 +210,18 @@ int armctrl_params_from_table(armctrl_table_storage *s, const frac_ptable *t)
         p->Friction.K = (REAL)v[2];
         return FRAC_OK;
     }
-    if ((st = get(t, "lqg_dims", 1, 5, v)) != FRAC_OK) {
+    if ((st = get(s, t, "lqg_dims", 1, 5, v)) != FRAC_OK) {
         return st;
     }
     for (c = 0; c < 5; c++) {
         if (!(v[c] >= 0 && v[c] <= FRAC_MAT_MAX) || v[c] != FRAC_FLOOR(v[c])) {
-            return FRAC_E_PARAM;
+            return failed(s, "lqg_dims", FRAC_E_PARAM);
         }
     }
     n = (unsigned)v[0];
     nb = n + (unsigned)v[1] + (unsigned)v[2] + (unsigned)v[3] + (unsigned)v[4];
     if (n < 1 || n > ARMCTRL_LQG_NMAX || nb + 1 > FRAC_MAT_MAX) {
-        return FRAC_E_DIM;
+        return failed(s, "lqg_dims", FRAC_E_DIM);
     }
     p->Lqg.N = n;
     p->Lqg.Di = (UDINT)v[1];
@@ -219,9 +229,9 @@ int armctrl_params_from_table(armctrl_table_storage *s, const frac_ptable *t)
     p->Lqg.Do[0] = (UDINT)v[2];
     p->Lqg.Do[1] = (UDINT)v[3];
     p->Lqg.Do[2] = (UDINT)v[4];
-    if ((st = get(t, "A", n, n, s->A)) != FRAC_OK || (st = get(t, "B", n, 1, s->B)) != FRAC_OK
-        || (st = get(t, "C", 3, n, s->C)) != FRAC_OK || (st = get(t, "K", 1, nb, s->K)) != FRAC_OK
-        || (st = get(t, "L", nb + 1, 3, s->L)) != FRAC_OK) {
+    if ((st = get(s, t, "A", n, n, s->A)) != FRAC_OK || (st = get(s, t, "B", n, 1, s->B)) != FRAC_OK
+        || (st = get(s, t, "C", 3, n, s->C)) != FRAC_OK || (st = get(s, t, "K", 1, nb, s->K)) != FRAC_OK
+        || (st = get(s, t, "L", nb + 1, 3, s->L)) != FRAC_OK) {
         return st;
     }
     p->Lqg.pA = s->A;

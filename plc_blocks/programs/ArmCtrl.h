@@ -120,13 +120,15 @@ typedef struct armctrl_table_storage {
     frac_real K[FRAC_MAT_MAX];
     frac_real L[FRAC_MAT_MAX * 3];
     armctrl_params par;
+    const char *fail_entry; /* entry armctrl_params_from_table refused ("" when none) */
 } armctrl_table_storage;
 
 /*
  * Fills s->par (and the arrays it points to) from a validated table.
  * Returns FRAC_OK or the first failure: FRAC_E_NOT_FOUND (entry missing),
  * FRAC_E_DIM (entry size not as listed above or above the capacities),
- * FRAC_E_PARAM (variant or a dimension out of range), FRAC_E_NULL.
+ * FRAC_E_PARAM (variant or a dimension out of range), FRAC_E_NULL; the
+ * entry that failed is left in s->fail_entry.
  * Values themselves are validated by the blocks at _INIT.
  */
 int armctrl_params_from_table(armctrl_table_storage *s, const frac_ptable *t);

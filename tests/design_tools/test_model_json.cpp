@@ -77,6 +77,20 @@ TEST(ModelJson, every_kind_round_trips)
     EXPECT_EQ(back.A, small_ss(0).A);
 }
 
+// Found by tests/fuzz/fuzz_model_json: a state space read without "inputs"
+// or "outputs" (both optional) was written with "inputs": [], which the
+// reader then refused ("must have 1 names, has 0").
+TEST(ModelJson, state_space_without_signal_names_round_trips)
+{
+    json j = model_to_json(small_ss(0.0));
+    j.erase("inputs");
+    j.erase("outputs");
+    const json out = model_to_json(model_from_json(j));
+    EXPECT_FALSE(out.contains("inputs"));
+    EXPECT_FALSE(out.contains("outputs"));
+    EXPECT_EQ(model_to_json(model_from_json(out)), out);
+}
+
 TEST(ModelJson, state_space_of_rational_kinds_and_refusal_for_irrational_ones)
 {
     EXPECT_EQ(model_state_space(BeamModelSpec{wang_steel_beam(), 9, Collocation::GaussLegendre}).nx(), 36);

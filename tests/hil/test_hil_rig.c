@@ -256,6 +256,38 @@ static void test_metadata_records_scenario_seeds_and_counts(void **state)
     fclose(m);
 }
 
+/* A run whose log reaches its bound stops with HIL_E_FULL and says so; the
+ * log holds only whole lines, never more than the bound; the duration bound
+ * refuses a run before it starts. */
+static void test_log_bound_stops_the_run_with_a_reason(void **state)
+{
+    struct hil_rig_config c;
+    FILE *log = tmpfile();
+    long size;
+    int st = HIL_OK;
+    (void)state;
+    hil_rig_config_default(&c);
+    c.duration = 1.0;
+    assert_int_equal(hil_rig_init(&rig, &c, log, NULL), HIL_OK);
+    rig.log_max = 20000; /* ~100 cycles of traffic */
+    while (st == HIL_OK && rig.st.cycles < 833)
+        st = hil_rig_cycle(&rig);
+    assert_int_equal(st, HIL_E_FULL);
+    assert_true(rig.st.cycles > 10 && rig.st.cycles < 833);
+    assert_non_null(strstr(rig.err, "frames.log reached its bound of 20000 bytes"));
+    fflush(log);
+    size = ftell(log);
+    assert_true(size <= 20000 && size > 19000);
+    assert_int_equal((unsigned long)size, rig.log_bytes);
+    fclose(log);
+    c.duration = HIL_RIG_DURATION_MAX * 1.0001;
+    assert_int_equal(hil_rig_init(&rig, &c, NULL, NULL), HIL_E_ARG);
+    assert_non_null(strstr(rig.err, "wants simulated seconds in (0, 600]"));
+    assert_int_equal(hil_rig_config_set(&c, "duration", "1e9"), HIL_E_RANGE);
+    assert_non_null(strstr(c.err, "duration = '1e9': wants simulated seconds in (0, 600]"));
+    assert_int_equal(hil_rig_config_set(&c, "duration", "600"), HIL_OK);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -267,6 +299,7 @@ int main(void)
         cmocka_unit_test(test_drive_bus_off_faults_recovers_with_emcy_and_reenables),
         cmocka_unit_test(test_scenario_file_sets_keys_and_reports_bad_lines),
         cmocka_unit_test(test_metadata_records_scenario_seeds_and_counts),
+        cmocka_unit_test(test_log_bound_stops_the_run_with_a_reason),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

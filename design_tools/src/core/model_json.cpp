@@ -280,8 +280,10 @@ json model_to_json(const ModelSpec& m)
         j["B"] = matrix_json(s.B);
         j["C"] = matrix_json(s.C);
         j["D"] = matrix_json(s.D);
-        j["inputs"] = s.inputs;
-        j["outputs"] = s.outputs;
+        // the names are optional on reading (names()): an unnamed model is
+        // written without them, since [] would not read back (fuzz_model_json)
+        if (!s.inputs.empty()) j["inputs"] = s.inputs;
+        if (!s.outputs.empty()) j["outputs"] = s.outputs;
         if (!s.states.empty()) j["states"] = s.states;
     }
     return j;

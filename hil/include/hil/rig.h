@@ -31,6 +31,12 @@
 #include "hil/rng.h"
 
 #define HIL_RIG_QUEUE 256
+/* Bounds of one run (docs/hil.md, "Bounds of a run"): simulated seconds, and
+ * bytes of the candump log (a run that reaches it stops with HIL_E_FULL and
+ * r->err saying so). ~0.45 MB of log per simulated second at T = 1.2 ms on
+ * the default traffic: 600 s give ~270 MB. */
+#define HIL_RIG_DURATION_MAX 600.0
+#define HIL_RIG_LOG_MAX (512ul << 20)
 
 struct hil_rig_config {
     char scenario[128];        /* scenario name or file, for the metadata */
@@ -48,6 +54,7 @@ struct hil_rig_config {
     struct hil_imu_params imu;
     struct hil_plant_params plant_p;
     struct hil_ctrl_params ctrl;
+    char err[320];             /* why the last hil_rig_config_set/load failed ("" after success) */
 };
 
 struct hil_rig_stats {
@@ -67,29 +74,37 @@ struct hil_rig {
     int q_head, q_len;
     unsigned slot;             /* frames in the current cycle */
     FILE *log, *csv;
+    unsigned long log_bytes;   /* bytes written to log so far */
+    unsigned long log_max;     /* bound of log_bytes: HIL_RIG_LOG_MAX after init, the caller may lower it */
     struct hil_rig_stats st;
+    char err[320];             /* why init or the run failed ("" when it did not) */
 };
 
 /* Defaults: the thesis delays (hil_*_params_default), plant "rigid",
  * 1 s, no loss, no injection, bus seed 1. */
 void hil_rig_config_default(struct hil_rig_config *c);
 
-/* Reads "key = value" lines ('#' comments) into c, on top of what it holds.
+/* Reads "key = value" lines ('#' comments, at most 254 bytes) into c, on top of what it holds.
  * Keys: T (sets the cycle of every node), duration, plant, frame_loss,
  * bus_seed, inject_every, imu_dropout_start, imu_dropout_end, drive_dropout_start,
  * drive_dropout_end, drive_busoff_start, drive_busoff_end, ctrl.law, the file paths
  * plant.table and ctrl.table (no '#'), and the fields
  * of the node parameter structs as drive.*, imu.*, plant.*, ctrl.*. Returns HIL_OK, HIL_E_IO, or HIL_E_FORMAT with *line_no set to
- * the first bad line (unknown key, bad number). */
+ * the first bad line (unknown key, bad number, value out of range, line too
+ * long); c->err names the key, the value and what is allowed. */
 int hil_rig_config_load(struct hil_rig_config *c, const char *path, int *line_no);
-/* Sets one key from text; HIL_OK, HIL_E_UNKNOWN_ID or HIL_E_FORMAT. */
+/* Sets one key from text; HIL_OK, HIL_E_UNKNOWN_ID (c->err lists the keys of
+ * the key's group), HIL_E_FORMAT (not a value of the key's type) or
+ * HIL_E_RANGE (duration outside (0, HIL_RIG_DURATION_MAX], frame_loss outside
+ * [0, 1)); c->err says "KEY = 'VALUE': what is allowed". */
 int hil_rig_config_set(struct hil_rig_config *c, const char *key, const char *value);
 
 /* Initialises every node; log and csv may be NULL. The CSV header is written
- * here. Returns HIL_OK or HIL_E_ARG (a parameter failed validation; when the
- * plant refused, r->plant.err says why). */
+ * here. Returns HIL_OK or HIL_E_ARG (a parameter failed validation; r->err
+ * says which). */
 int hil_rig_init(struct hil_rig *r, const struct hil_rig_config *c, FILE *log, FILE *csv);
-/* Runs one controller cycle. HIL_OK, or HIL_E_FULL if the bus queue overflowed. */
+/* Runs one controller cycle. HIL_OK, or HIL_E_FULL if the bus queue
+ * overflowed or the log reached HIL_RIG_LOG_MAX (r->err says which). */
 int hil_rig_cycle(struct hil_rig *r);
 /* Runs round(duration / T) cycles, then NMT stop. */
 int hil_rig_run(struct hil_rig *r);
