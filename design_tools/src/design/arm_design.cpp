@@ -271,6 +271,8 @@ ArmctrlForArm design_armctrl_for_arm(const ArmDocument& a, const Move& mv, FfKin
     s.T = a.T;
     s.torque_limit = a.torque_peak;
     s.wd_ramp = a.torque_peak / 0.01;  // the limit to 0 in 10 ms (issue 9 fault reaction)
+    // an IMU whose readings arrive d_o cycles late may also come that rarely (docs/arm_format.md)
+    s.wd_stale = std::max(2, a.dout);
     d.variant = s.exp - 'A';
     const double T = a.T;
     if (mv.t_start() < 0.0) throw std::invalid_argument("the move must not start before 0 s");
@@ -392,6 +394,7 @@ nlohmann::json arm_gap_nominal(const ArmDocument& a)
     StateSpace m = arm_document_measured(a, b);
     m.C = m.C.bottomRows(2).eval();  // theta_M', psi'(z_imu)
     m.D = Eigen::MatrixXd::Zero(2, 1);
+    m.outputs = {"motor_velocity", "imu_rate"};
     const StateSpace d = c2d_zoh(m, a.T);
     const Eigen::Index n = d.nx(), nd = a.dout, N = n + nd;
     // IMU delay chain: beta_do[k+1] = y_imu[k], beta_j[k+1] = beta_{j+1}[k], imu_rate = beta_1 (7.14)-(7.15)

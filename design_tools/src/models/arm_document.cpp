@@ -392,6 +392,25 @@ ArmBuild build_arm_from_document(const ArmDocument& a, int N, bool reduce, const
     b.link_used = b.payload ? couple_payload(b.beam_used, b.beam.sigma, pay) : b.beam_used;
     // with a payload the link has no feedthrough left; couple_arm's sigma term then multiplies zero columns
     b.arm = couple_arm(drive_model(a.drive), b.link_used, b.beam.sigma);
+    if (b.payload) {
+        // Mount damping (ratio kMountZeta of the mount mode) in parallel with each mount spring: the
+        // relative velocity v_rel = g^T e (e = Q x) with v_payload = e_p and the beam tip velocity
+        // y_b^L = B_bL^T e_b - sigma u0, u0 = [r_h theta_h'; theta_h'] (3.95), (3.100); R += d g g^T keeps
+        // R >= 0 (PH). Without it a payload axis is an undamped mode the loop cannot reach.
+        const Eigen::Index nb = b.beam_used.J.rows(), np = b.link_used.J.rows() - nb;
+        const Eigen::Index h = np / 2;
+        int k = 0;
+        for (int axis = 0; axis < 2; ++axis) {
+            const double m = axis == 0 ? a.payload_mass : a.payload_inertia, kk = axis == 0 ? a.mount_k_w : a.mount_k_psi;
+            if (!(m > 0)) continue;
+            Eigen::VectorXd g = Eigen::VectorXd::Zero(b.arm.J.rows());
+            g(4 + nb + h + k) = 1.0;
+            g.segment(4, nb) -= b.beam_used.B.col(2 + axis);
+            g(3) += b.beam.sigma * (axis == 0 ? a.drive.r_h : 1.0);
+            b.arm.R += 2.0 * kMountZeta * std::sqrt(kk * m) * g * g.transpose();
+            ++k;
+        }
+    }
     return b;
 }
 

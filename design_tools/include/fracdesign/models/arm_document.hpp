@@ -37,10 +37,12 @@ constexpr int kArmNMin = 4, kArmNMax = 200;         // design.N, collocation poi
 constexpr int kArmDelayMax = 40;                     // delays.input / delays.output [samples]
 constexpr double kArmTMin = 1e-5, kArmTMax = 0.1;    // sample_time [s]
 // Euler-Bernoulli link as the Timoshenko model's limit: GA = kEbShear EI / L^2, rhoI = kEbRotary rhoA L^2.
-// The bending frequencies then differ from Euler-Bernoulli's by O(1/kEbShear + kEbRotary) (tested).
+// Mode i then differs from Euler-Bernoulli by about (beta_i L)^2 / (2 kEbShear) + kEbRotary (tested).
 constexpr double kEbShear = 1e5, kEbRotary = 1e-7;
 // Default payload mount mode: this multiple of the Nyquist frequency pi/T.
 constexpr double kMountPerNyquist = 20.0;
+// Damping ratio of the payload mount mode (a damper in parallel with each mount spring).
+constexpr double kMountZeta = 0.05;
 
 struct ArmFriction {
     bool known = false;
