@@ -9,18 +9,21 @@ JOBS    ?= $(shell nproc 2>/dev/null || echo 2)
 PREFIX  ?= /usr/local
 PY      ?= /usr/bin/python3
 
-.PHONY: all bootstrap build check check-main check-asan bench demo install clean
+.PHONY: all bootstrap bootstrap-check build check check-main check-asan bench demo install clean
 
 all: build
 
 bootstrap:
 	@scripts/bootstrap.sh
 
+bootstrap-check:
+	@scripts/bootstrap.sh check
+
 build: bootstrap
 	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPython3_EXECUTABLE=$(PY)
 	cmake --build $(BUILD) -j $(JOBS)
 
-check: build
+check: bootstrap-check build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 	$(MAKE) --no-print-directory check-asan
 
@@ -30,7 +33,7 @@ check-asan:
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	  ctest --test-dir $(ASAN) --output-on-failure -j $(JOBS) -L c -LE gate
 
-bench: bootstrap
+bench: bootstrap-check
 	cmake -S . -B $(BENCHB) -DCMAKE_BUILD_TYPE=Release -DFRAC_GATES=OFF -DPython3_EXECUTABLE=$(PY)
 	cmake --build $(BENCHB) -j $(JOBS)
 	tests/bench/run.sh $(BENCHB)
