@@ -190,3 +190,26 @@ TEST(ArmDesign, move_segments_chain_and_a_bad_spec_is_refused)
     EXPECT_THROW(design::Move::parse("0:1.0@0.5"), std::invalid_argument);
     EXPECT_THROW(design::Move::parse("0:x@0.5+1"), std::invalid_argument);
 }
+
+TEST(ArmDesign, csv_tip_reference_gives_the_derivatives_of_the_sampled_move)
+{
+    // the sin^2 move sampled at 1e-4 s into a CSV: q and its first two derivatives come back
+    const design::Move ref = design::Move::parse("0.2:1.2@0.5+1.5");
+    const std::string path = std::string(FRAC_BINARY_DIR) + "/test_arm_move.csv";
+    {
+        std::ofstream f(path);
+        f.precision(17);
+        f << "t,q\n";
+        for (int k = 0; k <= 25000; ++k) f << k * 1e-4 << "," << ref.eval(k * 1e-4)[0] << "\n";
+    }
+    const design::Move m = design::Move::from_csv(path);
+    EXPECT_DOUBLE_EQ(m.q_start(), 0.2);
+    for (double t : {0.3, 0.62, 1.0, 1.37, 1.9}) {
+        const auto a = m.eval(t), b = ref.eval(t);
+        EXPECT_NEAR(a[0], b[0], 1e-9) << t;
+        EXPECT_NEAR(a[1], b[1], 1e-6) << t;
+        EXPECT_NEAR(a[2], b[2], 1e-3 * 9.0 / 2.25) << t;  // qdd_m = 9 s_e / duration^2
+    }
+    std::ofstream(path) << "t,angle\n0,0\n1,1\n";
+    EXPECT_THROW(design::Move::from_csv(path), std::invalid_argument);
+}
