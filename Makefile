@@ -13,18 +13,21 @@ JOBS    ?= $(shell nproc 2>/dev/null || echo 2)
 PREFIX  ?= /usr/local
 PY      ?= /usr/bin/python3
 
-.PHONY: all bootstrap build check check-main check-asan check-fuzz fuzz fuzz-build bench demo install clean
+.PHONY: all bootstrap bootstrap-check build check check-main check-asan check-fuzz fuzz fuzz-build bench demo install clean
 
 all: build
 
 bootstrap:
 	@scripts/bootstrap.sh
 
+bootstrap-check:
+	@scripts/bootstrap.sh check
+
 build: bootstrap
 	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPython3_EXECUTABLE=$(PY)
 	cmake --build $(BUILD) -j $(JOBS)
 
-check: build
+check: bootstrap-check build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 	$(MAKE) --no-print-directory check-asan
 	$(MAKE) --no-print-directory check-fuzz
@@ -36,7 +39,7 @@ check-asan:
 	  ctest --test-dir $(ASAN) --output-on-failure -j $(JOBS) -L c -LE gate
 
 # libFuzzer targets (tests/fuzz, docs/fuzzing.md) with clang, ASan and UBSan.
-fuzz-build: bootstrap
+fuzz-build: bootstrap-check
 	cmake -S . -B $(FUZZB) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFRAC_FUZZ=ON \
 	  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++
 	cmake --build $(FUZZB) -j $(JOBS)
@@ -47,7 +50,7 @@ check-fuzz: fuzz-build
 fuzz: fuzz-build
 	tests/fuzz/run.sh $(FUZZB) $(FUZZ_SECONDS)
 
-bench: bootstrap
+bench: bootstrap-check
 	cmake -S . -B $(BENCHB) -DCMAKE_BUILD_TYPE=Release -DFRAC_GATES=OFF -DPython3_EXECUTABLE=$(PY)
 	cmake --build $(BENCHB) -j $(JOBS)
 	tests/bench/run.sh $(BENCHB)

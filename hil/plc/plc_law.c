@@ -7,12 +7,25 @@
 #include "hil/can.h"
 #include "plc_law.h"
 
-/* Table 2.3 task classes with the programs of Fig. 2.12; simulated CPU time
- * per cycle: ArmCtrl 300 us, ImuRead 50 us. */
-static const char table_2_3[] =
-    "[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\nviolation_reaction = continue\n"
-    "[cyclic1]\nduration_us = 1200\nsim_cost_us = 300\nprograms = ArmCtrl\n"
-    "[cyclic2]\nduration_us = 600\nsim_cost_us = 50\nprograms = ImuRead\n";
+/* Table 2.3 task classes with the programs of Fig. 2.12 (system tick 100 us:
+ * 400 us interface cycle x 0.25) and the cycle times of the law: ArmCtrl in
+ * Cyclic #1 = T, ImuRead in Cyclic #2 = T/2 (the thesis: 1.2 and 0.6 ms);
+ * simulated CPU time per cycle: ArmCtrl 300 us, ImuRead 50 us. T must be a
+ * whole multiple of 2 ticks (HIL_PLC_T_MIN .. HIL_PLC_T_MAX). */
+#define PLC_TICK_US 100u
+static int task_config(char *cfg, size_t n, double T, unsigned *ticks)
+{
+    const double us = T * 1e6, k = floor(us / (2.0 * PLC_TICK_US) + 0.5);
+    if (!(T >= HIL_PLC_T_MIN && T <= HIL_PLC_T_MAX) || fabs(k * 2.0 * PLC_TICK_US - us) > 1e-6)
+        return HIL_E_ARG;
+    *ticks = (unsigned)(2.0 * k);
+    snprintf(cfg, n,
+             "[timing]\ninterface_cycle_us = 400\nmultiply_cycle_time_by = 0.25\nviolation_reaction = continue\n"
+             "[cyclic1]\nduration_us = %u\nsim_cost_us = 300\nprograms = ArmCtrl\n"
+             "[cyclic2]\nduration_us = %u\nsim_cost_us = 50\nprograms = ImuRead\n",
+             *ticks * PLC_TICK_US, *ticks * PLC_TICK_US / 2u);
+    return HIL_OK;
+}
 
 /* Tip reference of the logs: psi_ref[i] = int_0^{t_i} dpsi_L* (trapezoid),
  * looked up over table time by psi_lut. */
@@ -31,14 +44,17 @@ static int integrate_ref(struct hil_plc_law *L)
 /* Registers ArmCtrl (filled by the caller) and ImuRead, starts the runtime
  * (_INIT). HIL_OK, or HIL_E_STATE when the runtime or ArmCtrl's _INIT refused
  * (message in err; L stays started in the second case). */
-static int start(struct hil_plc_law *L, char *err, size_t errlen)
+static int start(struct hil_plc_law *L, double T, char *err, size_t errlen)
 {
     plc_rt_config cfg;
     const plc_program *reg[2];
+    char text[512];
+    if (task_config(text, sizeof text, T, &L->ticks_per_cycle) != HIL_OK)
+        return HIL_E_ARG;
     imuread_program(&L->m, &L->pm, 1.0f, &L->can_img, &L->imu_img);
     reg[0] = &L->pa;
     reg[1] = &L->pm;
-    if (plc_rt_config_parse(&cfg, table_2_3, "table_2_3", err, errlen) != PLC_RT_OK ||
+    if (plc_rt_config_parse(&cfg, text, "table_2_3", err, errlen) != PLC_RT_OK ||
         plc_rt_init(&L->rt, &cfg, reg, 2, err, errlen) != PLC_RT_OK || plc_rt_start(&L->rt) != PLC_RT_OK)
         return HIL_E_STATE;
     L->started = 1;
@@ -108,7 +124,7 @@ int hil_plc_law_init_exp_a(struct hil_plc_law *L, double T, double I_M, double I
     L->par.TorqueLimit = 250.0f;
     L->P = &L->par;
     armctrl_program(&L->a, &L->pa, &L->par, &L->drive_img, &L->imu_img, &L->ctrl_img);
-    return start(L, err, errlen);
+    return start(L, T, err, errlen);
 }
 
 /* err for a table ArmCtrl's _INIT refused: the failing field of the FRPT
@@ -151,12 +167,14 @@ int hil_plc_law_init_table(struct hil_plc_law *L, double T, const void *table, u
                            size_t errlen)
 {
     int st;
-    if (!L || !table || fabs(T - 1.2e-3) > 1e-12 || size > 0xFFFFFFFFul)
+    unsigned ticks;
+    char text[512];
+    if (!L || !table || task_config(text, sizeof text, T, &ticks) != HIL_OK || size > 0xFFFFFFFFul)
         return HIL_E_ARG;
     memset(L, 0, sizeof *L);
     L->P = &L->store.par;
     armctrl_program_table(&L->a, &L->pa, table, (UDINT)size, &L->store, &L->drive_img, &L->imu_img, &L->ctrl_img);
-    st = start(L, err, errlen);
+    st = start(L, T, err, errlen);
     if (st == HIL_E_STATE && L->started && L->a.fault)
         describe_refusal(L, (const unsigned char *)table, size, err, errlen);
     if (st == HIL_OK && fabs((double)L->P->CycleTime - T) > 1e-9) {
@@ -200,7 +218,7 @@ int hil_plc_law_step(void *ctx, const struct hil_ctrl_law_in *in, double *torque
     /* the operator's acknowledge of a run-time fault once the data are fresh */
     L->drive_img.Acknowledge = !L->a.fault && L->ctrl_img.Error && in->drive_fresh &&
                                L->cycles_run - L->imu_new_cycle <= 2 && !L->drive_img.Acknowledge;
-    plc_rt_run_sim(&L->rt, 12);
+    plc_rt_run_sim(&L->rt, L->ticks_per_cycle);
     L->cycles_run++;
     *torque = L->ctrl_img.TorqueEnable ? (double)L->ctrl_img.TorqueSetpoint : 0.0;
     *ref = 0.0;

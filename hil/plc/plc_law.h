@@ -72,7 +72,13 @@ struct hil_plc_law {
     uint64_t cycles_run;           /* controller cycles the task runtime has run */
     uint64_t imu_seen_at;          /* imu_readings when the last new reading came */
     uint64_t imu_new_cycle;        /* cycles_run at that reading */
+    unsigned ticks_per_cycle;      /* system ticks (100 us) per controller cycle T */
 };
+
+/* Cycle times the task configuration accepts: a whole multiple of 200 us
+ * (Cyclic #2 = T/2 on the 100 us tick). */
+#define HIL_PLC_T_MIN 4e-4
+#define HIL_PLC_T_MAX 0.1
 
 /* Builds Exp. A for cycle T = 1.2 ms on the design model (I_M, I_L, c_s),
  * starts the runtime (_INIT). Returns HIL_OK, HIL_E_ARG (T not 1.2 ms, a
@@ -82,8 +88,9 @@ int hil_plc_law_init_exp_a(struct hil_plc_law *L, double T, double I_M, double I
                            size_t errlen);
 
 /* Any variant from ArmCtrl's parameter table (size bytes at table, which must
- * outlive the law) for cycle T = 1.2 ms; starts the runtime. Returns HIL_OK;
- * HIL_E_ARG (T not 1.2 ms, NULL, or the table's "ts" is not T); HIL_E_STATE
+ * outlive the law) for cycle T (Cyclic #1 = T, Cyclic #2 = T/2; T a multiple
+ * of 200 us in [HIL_PLC_T_MIN, HIL_PLC_T_MAX]); starts the runtime. Returns HIL_OK;
+ * HIL_E_ARG (T not such a cycle, NULL, or the table's "ts" is not T); HIL_E_STATE
  * with the message in err: either the runtime refused its configuration
  * (L not started), or ArmCtrl's _INIT refused the table (err names the
  * failing field or entry and the StatusID) - then L is started

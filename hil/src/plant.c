@@ -106,7 +106,7 @@ static int load_arm(struct hil_plant *pl)
     unsigned char *bytes;
     frac_ptable t;
     frac_real *tmp;
-    double v[2] = {0.0, 0.0}, *Ac, *Bc;
+    double v[3] = {0.0, 0.0, 0.0}, *Ac, *Bc;
     unsigned n, i, j;
     double half = 0.5 * pl->p.T, m;
     int st;
@@ -136,11 +136,21 @@ static int load_arm(struct hil_plant *pl)
     Ac = (double *)malloc(sizeof(double) * (HIL_PLANT_ARM_NMAX * HIL_PLANT_ARM_NMAX + HIL_PLANT_ARM_NMAX));
     Bc = Ac ? Ac + HIL_PLANT_ARM_NMAX * HIL_PLANT_ARM_NMAX : NULL;
     st = !tmp || !Ac ? refuse(pl, "plant.table %s: out of memory", pl->p.table) : HIL_OK;
-    if (st == HIL_OK && (st = table_get(pl, &t, "plant_dims", 1, 2, tmp, v)) == HIL_OK &&
-        (v[0] != floor(v[0]) || v[1] != floor(v[1]) || v[1] < 2 || v[0] != 4.0 + 4.0 * v[1] ||
-         v[0] > HIL_PLANT_ARM_NMAX))
-        st = refuse(pl, "plant.table %s: plant_dims (%g, %g): want n = 4 + 4 N, N >= 2, n <= %d", pl->p.table, v[0],
-                    v[1], HIL_PLANT_ARM_NMAX);
+    /* plant_dims (n, N) of the seed arm, or (n, N, P) with P = 0, 2 or 4 payload states after the
+     * beam's (fracdesign model --arm: the tip payload on its mount) */
+    if (st == HIL_OK) {
+        frac_ptable_entry e;
+        v[2] = 0.0;
+        if (frac_ptable_find(&t, "plant_dims", &e) == FRAC_OK && e.rows == 1 && e.cols == 3)
+            st = table_get(pl, &t, "plant_dims", 1, 3, tmp, v);
+        else
+            st = table_get(pl, &t, "plant_dims", 1, 2, tmp, v);
+    }
+    if (st == HIL_OK && (v[0] != floor(v[0]) || v[1] != floor(v[1]) || v[1] < 2 ||
+                         !(v[2] == 0.0 || v[2] == 2.0 || v[2] == 4.0) || v[0] != 4.0 + 4.0 * v[1] + v[2] ||
+                         v[0] > HIL_PLANT_ARM_NMAX))
+        st = refuse(pl, "plant.table %s: plant_dims (%g, %g, %g): want n = 4 + 4 N + P, N >= 2, P in {0, 2, 4}, n <= %d",
+                    pl->p.table, v[0], v[1], v[2], HIL_PLANT_ARM_NMAX);
     n = st == HIL_OK ? (unsigned)v[0] : 0;
     if (st == HIL_OK && (st = table_get(pl, &t, "h", 1, 1, tmp, v)) == HIL_OK) {
         m = floor(half / v[0] + 0.5);
@@ -167,7 +177,7 @@ static int load_arm(struct hil_plant *pl)
         st = table_get(pl, &t, "Bc", n, 1, tmp, Bc);
     if (st == HIL_OK) {
         pl->an = n;
-        pl->aN = (unsigned)(n - 4) / 4;
+        pl->aN = (unsigned)v[1];
         pl->acc_b = 0.0;
         for (j = 0; j < n; j++) {
             double a = 0.0;

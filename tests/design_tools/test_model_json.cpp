@@ -103,6 +103,22 @@ TEST(ModelJson, state_space_of_rational_kinds_and_refusal_for_irrational_ones)
     EXPECT_THROW(model_state_space(FoProcessModelSpec{}), std::invalid_argument);
 }
 
+TEST(ModelJson, collocation_count_is_bounded_before_it_is_narrowed)
+{
+    // N = 3e9 as a JSON integer wrapped around in the int it was read into; each is refused naming the
+    // field, the value and the range.
+    for (const json n : {json(3000000000LL), json(18446744073709551615ULL), json(-3000000000LL), json(kModelNMax + 1),
+                         json(1)}) {
+        json j = beam_doc();
+        j["discretization"]["N"] = n;
+        const std::string e = error_of(j);
+        EXPECT_NE(e.find("'discretization.N': must lie in [2, 200] (got " + n.dump() + ")"), std::string::npos) << e;
+    }
+    json j = beam_doc();
+    j["discretization"]["N"] = kModelNMax;
+    EXPECT_NO_THROW(model_from_json(j));
+}
+
 TEST(ModelJson, bad_documents_give_one_line_errors_naming_the_field)
 {
     json j = beam_doc();

@@ -24,6 +24,8 @@ namespace fracdesign {
 
 constexpr const char* kModelSchema = "frac.model";
 constexpr int kModelVersion = 1;
+// Largest collocation count N of a beam or arm document (4N beam states; also the arm document's bound).
+constexpr int kModelNMax = 200;
 
 // A malformed or inconsistent model document; what() is one line and names the field.
 struct ModelFormatError : std::runtime_error {

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fracdesign/cli.hpp"
+#include "fracdesign/design/arm_design.hpp"
 #include "fracdesign/design/armctrl.hpp"
 #include "fracdesign/tables/ptable.hpp"
 
@@ -20,11 +21,92 @@ int to_int(const Args& args, const char* key, long def, long lo, long hi, const 
     return static_cast<int>(v);
 }
 
+design::Move move_from_args(const Args& args)
+{
+    if (args.has("move") == args.has("move-csv")) throw UsageError("--arm needs one of --move SPEC or --move-csv FILE");
+    try {
+        return args.has("move") ? design::Move::parse(args.str("move")) : design::Move::from_csv(args.str("move-csv"));
+    } catch (const std::exception& e) {
+        throw UsageError(e.what());
+    }
+}
+
+// `armctrl --arm ARM.json --move ...`: the ArmCtrl table of the arm document (design/arm_design.hpp).
+int run_armctrl_arm(const Args& args)
+{
+    for (const char* k : {"exp", "N", "rt", "rr", "di", "do", "torque-limit"})
+        if (args.has(k)) throw UsageError(std::string("--") + k + " does not go with --arm: the arm document gives it");
+    ArmDocument a;
+    try {
+        a = read_arm_file(args.str("arm"));
+    } catch (const ArmDocumentError& e) {
+        throw UsageError(e.what());
+    }
+    const design::Move mv = move_from_args(args);
+    const std::string ffs = args.str("ff", "inverse");
+    if (ffs != "inverse" && ffs != "rigid") throw UsageError("--ff must be inverse or rigid (got '" + ffs + "')");
+    const std::string format = args.str("format", "bin"), out = args.str("out");
+    if (!tables::is_emit_format(format)) throw UsageError("--format must be json, c, var or bin");
+    design::ArmctrlForArm r;
+    try {
+        r = design::design_armctrl_for_arm(a, mv, ffs == "rigid" ? design::FfKind::Rigid : design::FfKind::Inverse,
+                                           args.num("post", 2.0));
+    } catch (const design::RiccatiError& e) {
+        std::cerr << "fracdesign armctrl: Riccati equation has no stabilising solution: " << e.what() << "\n";
+        return 1;
+    } catch (const design::ArmDesignError& e) {
+        std::cerr << "fracdesign armctrl: " << e.what() << "\n";
+        return 1;
+    } catch (const std::runtime_error& e) {
+        std::cerr << "fracdesign armctrl: " << e.what() << "\n";
+        return 1;
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+    }
+    design::ArmctrlDesign& d = r.d;
+    if (args.has("real")) {
+        try {
+            d.table.real = tables::real_type_from_string(args.str("real"));
+        } catch (const tables::TableError&) {
+            throw UsageError("--real must be float64 or float32");
+        }
+    }
+    const std::string data = tables::emit(d.table, format);
+    write_file(out, data);
+    const long n_ff = static_cast<long>(d.ff[0].size());
+    nlohmann::json j = {{"schema", "frac.armctrl"}, {"version", 1}, {"arm", a.name}, {"experiment", std::string(1, d.spec.exp)},
+                        {"variant", d.variant}, {"feedforward", ffs}, {"move", mv.describe()}, {"format", format},
+                        {"out", out}, {"bytes", data.size()}, {"ts", a.T}, {"di", a.di}, {"do", a.dout},
+                        {"ff_samples", n_ff}, {"ff_grid", {d.t0, d.dt, d.t_motion_start, d.t_motion_end}},
+                        {"tau_M_max", d.tau_max}, {"torque_peak", a.torque_peak}, {"pre_actuation_start", d.pre_actuation_start},
+                        {"lqg", {{"n", d.A.rows()}, {"n_bar", d.K.cols()}, {"check_reduced", design::to_json(d.check_reduced)},
+                                 {"check_unreduced", design::to_json(d.check_unreduced)}}}};
+    if (d.ibffc) j["ibffc"] = {{"tracking_rel_rms", d.ibffc->rel_rms}, {"modes_forward", d.ibffc->n_forward}, {"modes_backward", d.ibffc->n_backward}};
+    if (args.has("json")) {
+        std::cout << j.dump(2) << "\n";
+    } else {
+        std::printf("ArmCtrl table for arm '%s' (variant %c, %s feedforward): move %s\n", a.name.c_str(), d.spec.exp,
+                    ffs.c_str(), mv.describe().c_str());
+        std::printf("  feedforward: %ld samples, max |tau_M*| = %.4g N m (peak %.4g), torque from %.4g s\n", n_ff, d.tau_max,
+                    a.torque_peak, d.pre_actuation_start);
+        for (const auto& [name, c] : {std::pair<const char*, design::LoopCheck>{"reduced", d.check_reduced}, {"unreduced", d.check_unreduced}})
+            std::printf("  LQG closed loop on the %s arm, d_i = %d, d_o = %d: spectral radius %.9f (%s), GM %.2f dB, PM %.2f deg\n",
+                        name, c.plant_di, c.plant_do, c.spectral_radius, c.spectral_radius < 1.0 ? "stable" : "UNSTABLE",
+                        c.gain_margin_db, c.phase_margin_deg);
+        std::printf("  table '%s' -> %s [%s, %zu bytes]\n", d.table.name.c_str(), out.c_str(), format.c_str(), data.size());
+    }
+    return 0;
+}
+
 int run_armctrl(const std::vector<std::string>& argv)
 {
     Args args(argv, {"json"});
-    args.check_known({"json", "exp", "N", "rt", "rr", "di", "do", "format", "real", "out", "torque-limit", "post"});
+    args.check_known({"json", "exp", "N", "rt", "rr", "di", "do", "format", "real", "out", "torque-limit", "post", "arm", "move",
+                      "move-csv", "ff"});
     if (!args.positional().empty()) throw UsageError("unexpected argument '" + args.positional()[0] + "'");
+    if (args.has("arm")) return run_armctrl_arm(args);
+    for (const char* k : {"move", "move-csv", "ff"})
+        if (args.has(k)) throw UsageError(std::string("--") + k + " only with --arm ARM.json");
     design::ArmctrlSpec s;
     const std::string exp = args.str("exp");
     if (exp.size() != 1 || exp[0] < 'A' || exp[0] > 'D') throw UsageError("--exp must be A, B, C or D (got '" + exp + "')");
@@ -128,9 +210,17 @@ int run_armctrl(const std::vector<std::string>& argv)
 }
 
 CommandRegistrar reg({"armctrl", "parameter table of the PLC program ArmCtrl for seed 004 Exp. A-D",
-                      "usage: fracdesign armctrl --exp A|B|C|D --out FILE [--format json|c|var|bin]\n"
+                      "usage: fracdesign armctrl --arm ARM.json --move SPEC|--move-csv FILE --out FILE\n"
+                      "                          [--ff inverse|rigid] [--post S] [--format ...] [--json]\n"
+                      "       fracdesign armctrl --exp A|B|C|D --out FILE [--format json|c|var|bin]\n"
                       "                          [--real float64|float32] [--N 9] [--rt R --rr R]\n"
                       "                          [--di 4 --do 3] [--torque-limit 250] [--post S] [--json]\n\n"
+                      "--arm: the table for the arm document (docs/arm_format.md): LQG with the document's\n"
+                      "delays (variant D; C without delays), feedforward by stable inversion (--ff inverse,\n"
+                      "default) or rigid-body (4.14)-(4.17) (--ff rigid) for the move: --move\n"
+                      "Q0:Q1@T0+DUR[,Q2@T1+DUR...] (sin^2 segments, rad and s, e.g. 0:1.0@0.5+1.5) or\n"
+                      "--move-csv FILE (columns t, q: the tip reference). Refused (exit 1, cause named) when\n"
+                      "the unreduced loop is unstable or the feedforward exceeds drive.torque_peak.\n\n"
                       "Designs the controller of one experiment of seed 004 (Table 8.1) and writes the\n"
                       "table ArmCtrl loads (plc_blocks/programs/ArmCtrl.h; docs/armctrl_tables.md):\n"
                       "  A  rigid-body feedforward (4.14)-(4.17) + PD 320/200 + linear friction (Table 8.6)\n"

@@ -4,15 +4,87 @@
 #include <nlohmann/json.hpp>
 
 #include "fracdesign/cli.hpp"
+#include "fracdesign/design/arm_design.hpp"
 #include "fracdesign/design/lqg.hpp"
 
 namespace fracdesign {
 namespace {
 
+void print_check(const char* name, const design::LoopCheck& c)
+{
+    std::printf("  closed loop on the %s arm, plant d_i = %d, d_o = %d (%d states): spectral radius %.9f (%s, "
+                "at %.1f rad/s), GM %.2f dB, PM %.2f deg, min|1+L| %.3f\n",
+                name, c.plant_di, c.plant_do, c.plant_states, c.spectral_radius,
+                c.spectral_radius < 1.0 ? "stable" : "UNSTABLE", c.critical_w, c.gain_margin_db, c.phase_margin_deg,
+                c.modulus_margin);
+}
+
+nlohmann::json reduction_json(const design::ArmReduction& r)
+{
+    nlohmann::json modes = nlohmann::json::array();
+    for (const auto& m : r.retained) modes.push_back({{"full_hz", m.full_hz}, {"reduced_hz", m.reduced_hz}, {"rel_error", m.rel_error}});
+    return {{"rule", "shifts {w1/2, w1..wm}: clamped-free beam modes up to reduce_multiple x bandwidth (docs/arm_format.md)"},
+            {"bandwidth_hz", r.bandwidth_hz}, {"shifts_rad_s", r.shifts}, {"full_states", r.full_states},
+            {"reduced_states", r.reduced_states}, {"full_modes_hz", r.full_hz}, {"retained", modes},
+            {"max_error_below_bandwidth", r.max_error_below_bandwidth}};
+}
+
+// `lqg --arm ARM.json`: everything from the arm document (design/arm_design.hpp).
+int run_lqg_arm(const Args& args)
+{
+    for (const char* k : {"exp", "T", "di", "do", "rt", "rr", "plant-di", "plant-do"})
+        if (args.has(k)) throw UsageError(std::string("--") + k + " does not go with --arm: the arm document gives it");
+    ArmDocument a;
+    try {
+        a = read_arm_file(args.str("arm"));
+    } catch (const ArmDocumentError& e) {
+        throw UsageError(e.what());
+    }
+    design::ArmLqg r;
+    try {
+        r = design::design_arm_lqg(a);
+    } catch (const design::ArmDesignError& e) {
+        std::cerr << "fracdesign lqg: " << e.what() << "\n";
+        return 1;
+    } catch (const design::RiccatiError& e) {
+        std::cerr << "fracdesign lqg: Riccati equation has no stabilising solution: " << e.what() << "\n";
+        return 1;
+    }
+    nlohmann::json j = design::to_json(r.lqg);
+    j["source"] = "arm document '" + a.name + "': seed 004 (6.36)-(6.45), (7.3)-(7.27) with the weights of docs/arm_format.md";
+    j["arm"] = a.name;
+    if (a.design.reduce) j["reduction"] = reduction_json(r.reduction);
+    j["check_reduced"] = design::to_json(r.check_reduced);
+    j["check_unreduced"] = design::to_json(r.check_unreduced);
+    if (args.has("out")) write_file(args.str("out"), j.dump(2) + "\n");
+    if (args.has("json")) {
+        std::cout << j.dump(2) << "\n";
+    } else {
+        const design::LqgParams& p = r.lqg.params;
+        std::printf("LQG for arm '%s': T = %g s, d_i = %d, d_o = %d; weights q_low %.4g, q_high %.4g (n_low %d), S_c %g\n",
+                    a.name.c_str(), p.T, p.di, p.dout, p.q_low, p.q_high, p.n_low, p.s_c);
+        if (a.design.reduce) {
+            const auto& rd = r.reduction;
+            std::printf("  reduction: bandwidth %.4g Hz, %zu shifts", rd.bandwidth_hz, rd.shifts.size());
+            for (double s : rd.shifts) std::printf(" %.4g", s);
+            std::printf(" rad/s: %d -> %d states\n", rd.full_states, rd.reduced_states);
+            for (const auto& m : rd.retained)
+                std::printf("    mode %.5f Hz (full %.5f Hz): error %.3e\n", m.reduced_hz, m.full_hz, m.rel_error);
+        }
+        std::printf("  K: %ld x %ld, L_e: %ld x %ld; DARE residuals %.2e (K), %.2e (L_e)\n", long(r.lqg.K.rows()),
+                    long(r.lqg.K.cols()), long(r.lqg.Le.rows()), long(r.lqg.Le.cols()), r.lqg.ctrl.residual, r.lqg.obs.residual);
+        print_check("reduced", r.check_reduced);
+        print_check("unreduced", r.check_unreduced);
+        if (args.has("out")) std::printf("  design written to %s\n", args.str("out").c_str());
+    }
+    return r.check_unreduced.spectral_radius < 1.0 ? 0 : 1;
+}
+
 int run_lqg(const std::vector<std::string>& argv)
 {
     Args args(argv, {"json"});
-    args.check_known({"json", "exp", "T", "di", "do", "rt", "rr", "out", "plant-di", "plant-do"});
+    args.check_known({"json", "exp", "T", "di", "do", "rt", "rr", "out", "plant-di", "plant-do", "arm"});
+    if (args.has("arm")) return run_lqg_arm(args);
     const std::string exp = args.str("exp", "D");
     if (exp != "C" && exp != "D") throw UsageError("--exp must be C or D");
     design::LqgParams p = exp == "C" ? design::LqgParams::exp_c() : design::LqgParams::exp_d();
@@ -76,7 +148,13 @@ int run_lqg(const std::vector<std::string>& argv)
 
 CommandRegistrar reg({"lqg", "state-difference LQG with delays for the flexible arm (seed 004 Exp. C/D)",
                       "usage: fracdesign lqg [--exp C|D] [--T S] [--di N] [--do N] [--rt R] [--rr R]\n"
-                      "                      [--plant-di N] [--plant-do N] [--out DESIGN.json] [--json]\n\n"
+                      "                      [--plant-di N] [--plant-do N] [--out DESIGN.json] [--json]\n"
+                      "       fracdesign lqg --arm ARM.json [--out DESIGN.json] [--json]\n\n"
+                      "--arm: the arm document (docs/arm_format.md) gives everything: the full model at\n"
+                      "design.N, the reduced model with automatic Krylov shifts (each retained mode's\n"
+                      "error printed; refused above design.mode_error_max below the bandwidth), the\n"
+                      "weights (default rule scaled to the rated torque, or design.lqg), T, d_i, d_o;\n"
+                      "the loop is checked on the reduced and the UNREDUCED arm with those delays.\n\n"
                       "Designs K and L_e for the Krylov-reduced arm (16 states) with the weights of\n"
                       "Table 8.7 (C: no delay) or 8.8 (D: T = 1.2 ms, d_i = 4, d_o = 3): ZOH, delay\n"
                       "augmentation, modal weights (real modal form, |lambda| ascending), dlqr for K,\n"

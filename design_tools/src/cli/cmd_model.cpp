@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fracdesign/cli.hpp"
+#include "fracdesign/design/arm_design.hpp"
 #include "fracdesign/design/riccati.hpp"
 #include "fracdesign/model_json.hpp"
 #include "fracdesign/tables/ptable.hpp"
@@ -229,11 +230,79 @@ tables::ParamTable arm_plant_table(const ArmModelSpec& s, double h)
     return t;
 }
 
+// `model --arm ARM.json`: the arm document's full and reduced models, and its HIL plant table, gap
+// nominal and rig scenario. Every output is composed first and written only when all were made.
+int run_model_arm(const Args& a)
+{
+    for (const char* k : {"model", "save", "save-ss", "N", "collocation", "L", "r_t", "r_r", "I_M", "full", "shifts"})
+        if (a.has(k)) throw UsageError(std::string("--") + k + " does not go with --arm: the arm document gives it");
+    if (!a.positional().empty() && a.positional()[0] != "arm") throw UsageError("--arm builds an arm, not '" + a.positional()[0] + "'");
+    ArmDocument doc;
+    try {
+        doc = read_arm_file(a.str("arm"));
+    } catch (const ArmDocumentError& e) {
+        throw UsageError(e.what());
+    }
+    if (a.has("h") && !a.has("save-plant")) throw UsageError("option --h: only with --save-plant");
+    std::vector<std::pair<std::string, std::string>> files;
+    double h = 0.0;
+    if (a.has("save-plant")) {
+        // the rig integrates half cycles: default h = T / 8 (4 steps per half cycle)
+        h = a.num("h", doc.T / 8.0);
+        try {
+            files.emplace_back(a.str("save-plant"), tables::emit(design::arm_plant_table_for(doc, h), "bin"));
+        } catch (const std::invalid_argument& e) {
+            throw UsageError(e.what());
+        }
+    }
+    if (a.has("gap-nominal")) files.emplace_back(a.str("gap-nominal"), design::arm_gap_nominal(doc).dump(1) + "\n");
+    if (a.has("save-scenario")) {
+        const double dur = a.num("duration", 4.0);
+        if (!(dur > 0.0 && dur <= 600.0)) throw UsageError("option --duration: allowed (0, 600] s");
+        try {
+            files.emplace_back(a.str("save-scenario"),
+                               design::arm_hil_scenario(doc, a.str("plant-table", "plant.bin"), a.str("ctrl-table", "ctrl.bin"), dur));
+        } catch (const std::invalid_argument& e) {
+            throw UsageError(e.what());
+        }
+    }
+    design::ArmReduction red;
+    try {
+        red = design::choose_reduction(doc);
+    } catch (const design::ArmDesignError& e) {
+        std::cerr << "fracdesign model: " << e.what() << "\n";
+        return 1;
+    }
+    for (const auto& f : files) write_file(f.first, f.second);
+    json modes = json::array();
+    for (const auto& m : red.retained) modes.push_back({{"full_hz", m.full_hz}, {"reduced_hz", m.reduced_hz}, {"rel_error", m.rel_error}});
+    const json r = {{"schema", "frac.arm.model"}, {"version", 1}, {"arm", doc.name}, {"N", doc.design.N},
+                    {"full_states", red.full_states}, {"reduced_states", red.reduced_states},
+                    {"bandwidth_hz", red.bandwidth_hz}, {"shifts_rad_s", red.shifts}, {"full_modes_hz", red.full_hz},
+                    {"retained", modes}, {"max_error_below_bandwidth", red.max_error_below_bandwidth},
+                    {"rigid_link_inertia", doc.rigid_link_inertia()}};
+    if (a.has("json")) {
+        std::cout << r.dump(2) << "\n";
+    } else {
+        std::printf("arm '%s': full model N = %d, %d states; reduced %d states (bandwidth %.4g Hz, shifts", doc.name.c_str(),
+                    doc.design.N, red.full_states, red.reduced_states, red.bandwidth_hz);
+        for (double x : red.shifts) std::printf(" %.4g", x);
+        std::printf(" rad/s)\n");
+        for (const auto& m : red.retained)
+            std::printf("  mode full %.5f Hz, reduced %.5f Hz, error %.3e\n", m.full_hz, m.reduced_hz, m.rel_error);
+        for (const auto& f : files) std::printf("  written: %s\n", f.first.c_str());
+    }
+    return 0;
+}
+
 int run_model(const std::vector<std::string>& argv)
 {
     Args a(argv, {"json", "full", "undamped"});
-    a.check_known({"json", "model", "save", "save-ss", "save-plant", "h", "modes", "w", "N", "collocation", "L", "r_t", "r_r", "I_M", "full", "shifts",
+    a.check_known({"json", "arm", "gap-nominal", "save-scenario", "plant-table", "ctrl-table", "duration", "model", "save", "save-ss", "save-plant", "h", "modes", "w", "N", "collocation", "L", "r_t", "r_r", "I_M", "full", "shifts",
                    "structure", "zeta", "alpha", "gamma", "lambda", "m2", "undamped", "K", "T", "tau"});
+    if (a.has("arm")) return run_model_arm(a);
+    for (const char* k : {"gap-nominal", "save-scenario", "plant-table", "ctrl-table", "duration"})
+        if (a.has(k)) throw UsageError(std::string("--") + k + " only with --arm ARM.json");
     ModelSpec m;
     if (a.has("model")) {
         m = read_model_file(a.str("model"));
@@ -272,7 +341,14 @@ int run_model(const std::vector<std::string>& argv)
 
 CommandRegistrar reg({"model", "build a seed model and print its frequencies, poles/zeros or responses",
                       "usage: fracdesign model <beam|arm|antenna|collocated|foprocess> [params] [--json]\n"
-                      "       fracdesign model --model FILE [--json]\n\n"
+                      "       fracdesign model --model FILE [--json]\n"
+                      "       fracdesign model --arm ARM.json [--save-plant FILE.bin [--h S]] [--gap-nominal FILE.json]\n"
+                      "                        [--save-scenario FILE.txt [--plant-table F] [--ctrl-table F] [--duration S]] [--json]\n\n"
+                      "  --arm ARM.json  the arm document (docs/arm_format.md): full model at design.N and the\n"
+                      "                reduced one with automatic shifts (each retained mode vs the full arm);\n"
+                      "                --save-plant: its HIL plant table (default h = T/8); --gap-nominal: the gap\n"
+                      "                diagnosis's nominal (open loop torque_actual -> motor_velocity, imu_rate);\n"
+                      "                --save-scenario: hil_bench scenario lines for the arm\n\n"
                       "  beam        PS Timoshenko beam (seed 004): --N 9 --collocation gl|eq --L --r_t --r_r --modes 5\n"
                       "  arm         drive + beam (3.103): --N 9 --full (no Krylov reduction) --shifts 16,18.43,115.6\n"
                       "              --I_M 5.8624 (load side, n^2 I_m)\n"

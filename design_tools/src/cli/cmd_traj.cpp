@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <sstream>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "fracdesign/cli.hpp"
+#include "fracdesign/design/arm_design.hpp"
 #include "fracdesign/design/armctrl.hpp"
 #include "fracdesign/design/ibffc.hpp"
 #include "fracdesign/design/lqg.hpp"
@@ -63,11 +65,76 @@ int run_ibffc(const Args& args, const design::SinSquaredPtp& p, double dt, long 
     return 0;
 }
 
+// `traj --arm ARM.json --move ...`: the rigid-body and the inverse-model feedforward of the arm
+// document for the move, sampled at the document's T (design/arm_design.hpp), as one CSV.
+int run_traj_arm(const Args& args)
+{
+    for (const char* k : {"qs", "qe", "qd-max", "qdd-max", "ts", "te", "dt", "Il", "di", "do", "rt", "rr", "ibffc"})
+        if (args.has(k)) throw UsageError(std::string("--") + k + " does not go with --arm: the arm document and --move give it");
+    ArmDocument a;
+    try {
+        a = read_arm_file(args.str("arm"));
+    } catch (const ArmDocumentError& e) {
+        throw UsageError(e.what());
+    }
+    if (args.has("move") == args.has("move-csv")) throw UsageError("--arm needs one of --move SPEC or --move-csv FILE");
+    std::unique_ptr<design::Move> mv;
+    try {
+        mv = std::make_unique<design::Move>(args.has("move") ? design::Move::parse(args.str("move"))
+                                                              : design::Move::from_csv(args.str("move-csv")));
+    } catch (const std::exception& e) {
+        throw UsageError(e.what());
+    }
+    const double pre = args.num("pre", 2.0), post = args.num("post", 2.0);
+    if (!(pre >= 0.0) || !(post >= 0.0)) throw UsageError("--pre and --post must be >= 0");
+    design::ArmReduction red;
+    try {
+        red = design::choose_reduction(a);
+    } catch (const design::ArmDesignError& e) {
+        std::cerr << "fracdesign traj: " << e.what() << "\n";
+        return 1;
+    }
+    const StateSpace plant = arm_document_measured(a, build_arm_from_document(a, a.design.N, true, red.shifts));
+    const double T = a.T, t0 = std::max(0.0, mv->t_start() - pre), t1 = mv->t_end() + post;
+    const auto r = design::stable_inversion(plant, T, [&](double t) { return mv->eval(t)[1]; }, t0, t1);
+    const double Il = a.rigid_link_inertia();
+    double rb_max = 0.0, ib_max = 0.0;
+    std::ostringstream f;
+    f.precision(12);
+    f << "t,q,qd,qdd,rb_theta_M,rb_theta_M_dot,rb_tau_M,ib_theta_M,ib_theta_M_dot,ib_tau_M,psi_dot_des\n";
+    for (size_t k = 0; k < r.t.size(); ++k) {
+        const auto q = mv->eval(r.t[k]);
+        const auto rb = design::rigid_body_feedforward(q, a.drive.I_M, Il, a.drive.c_s);
+        rb_max = std::max(rb_max, std::fabs(rb[3]));
+        ib_max = std::max(ib_max, std::fabs(r.u[k]));
+        f << r.t[k] << "," << q[0] << "," << q[1] << "," << q[2] << "," << rb[0] << "," << rb[1] << "," << rb[3] << ","
+          << r.theta_M[k] + mv->q_start() << "," << r.theta_M_dot[k] << "," << r.u[k] << "," << r.y_des[k] << "\n";
+    }
+    if (args.has("out")) write_file(args.str("out"), f.str());
+    nlohmann::json j = {{"schema", "frac.design.traj"}, {"version", 1}, {"arm", a.name}, {"move", mv->describe()},
+                        {"dt", T}, {"samples", r.t.size()}, {"I_l", Il}, {"rigid_tau_M_max", rb_max},
+                        {"inverse_tau_M_max", ib_max}, {"inverse_tracking_rel_rms", r.rel_rms},
+                        {"torque_peak", a.torque_peak}};
+    if (args.has("json")) {
+        std::cout << j.dump(2) << "\n";
+    } else {
+        std::printf("feedforward for arm '%s', move %s, dt = %g s, %zu samples\n", a.name.c_str(), mv->describe().c_str(), T,
+                    r.t.size());
+        std::printf("  rigid body (I_l = %.5g kg m^2): max |tau_M*| = %.4g N m; inverse model: max |tau_M*| = %.4g N m, "
+                    "model tracks the IMU rate to %.2e relative RMS\n", Il, rb_max, ib_max, r.rel_rms);
+        if (args.has("out")) std::printf("  written to %s\n", args.str("out").c_str());
+    }
+    return 0;
+}
+
 int run_traj(const std::vector<std::string>& argv)
 {
     Args args(argv, {"json", "ibffc"});
     args.check_known({"json", "qs", "qe", "qd-max", "qdd-max", "ts", "te", "dt", "t-end", "Il", "di", "do", "out", "ibffc",
-                      "rt", "rr", "pre"});
+                      "rt", "rr", "pre", "arm", "move", "move-csv", "post"});
+    if (args.has("arm")) return run_traj_arm(args);
+    for (const char* k : {"move", "move-csv", "post"})
+        if (args.has(k)) throw UsageError(std::string("--") + k + " only with --arm ARM.json");
     constexpr double kPi = 3.14159265358979323846;
     // Defaults: Table 8.5 (q_s = 0, q_e = pi/2, qd_m = pi/2, qdd_m = 2 pi, t_s = 0.5 s, t_e = 2 s).
     design::PtpSpec s{args.num("qs", 0.0), args.num("qe", kPi / 2), args.num("qd-max", kPi / 2),
@@ -133,9 +200,13 @@ int run_traj(const std::vector<std::string>& argv)
 }
 
 CommandRegistrar reg({"traj", "sin^2 point-to-point trajectory and rigid-body feedforward (seed 004)",
-                      "usage: fracdesign traj [--qs Q] [--qe Q] [--qd-max V] [--qdd-max A] [--ts T] [--te T]\n"
+                      "usage: fracdesign traj --arm ARM.json --move SPEC|--move-csv FILE [--pre S] [--post S]\n"
+                      "                       [--out FILE.csv] [--json]\n"
+                      "       fracdesign traj [--qs Q] [--qe Q] [--qd-max V] [--qdd-max A] [--ts T] [--te T]\n"
                       "                       [--dt DT] [--t-end T] [--Il I] [--di N] [--do N] [--out FILE.csv] [--json]\n"
                       "                       [--ibffc [--rt R] [--rr R] [--pre S]]\n\n"
+                      "--arm: rigid-body (4.14)-(4.17) and inverse-model (stable inversion of the reduced\n"
+                      "arm) feedforward of the arm document (docs/arm_format.md) for the move, at its T.\n\n"
                       "Plans the sin^2 PTP of seed 004 (4.1)-(4.7) (corrected: qdd_m in (4.5), braking\n"
                       "sin^2(pi (t - t_b)/t_a) in (4.7)); defaults are Table 8.5. --te 0 moves as fast as\n"
                       "qd_max and qdd_max allow; an end time shorter than that is refused (exit 1). Samples\n"

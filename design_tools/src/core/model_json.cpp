@@ -123,8 +123,12 @@ void disc_from(const json& j, int& N, Collocation& c)
     const json& d = member(j, "", "discretization");
     const json& n = member(d, "discretization", "N");
     if (!n.is_number_integer()) throw ModelFormatError("discretization.N", "must be an integer");
-    N = n.get<int>();
-    if (N < 2) throw ModelFormatError("discretization.N", "must be >= 2 (got " + std::to_string(N) + ")");
+    // Read wide and bound before narrowing: N = 3000000000 must be refused, not wrap around in an int.
+    if (n.is_number_unsigned() ? n.get<unsigned long long>() > static_cast<unsigned long long>(kModelNMax)
+                               : (n.get<long long>() < 2 || n.get<long long>() > kModelNMax))
+        throw ModelFormatError("discretization.N", "must lie in [2, " + std::to_string(kModelNMax) + "] (got " + n.dump() + ")");
+    N = static_cast<int>(n.get<long long>());
+    if (N < 2) throw ModelFormatError("discretization.N", "must lie in [2, " + std::to_string(kModelNMax) + "] (got " + std::to_string(N) + ")");
     c = Collocation::GaussLegendre;
     if (d.contains("collocation")) {
         const json& s = d.at("collocation");

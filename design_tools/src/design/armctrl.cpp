@@ -72,6 +72,22 @@ StateSpace wang_arm_measured(int N, double r_t, double r_r, bool reduce)
     return arm_measured_model(build_arm(beam, wang_drive(), o).arm);
 }
 
+void armctrl_take_lqg(ArmctrlDesign& d, const LqgDesign& g)
+{
+    const long n = g.plant.nx();
+    const ArmctrlSpec& s = d.spec;
+    // frac/lqg.h takes the plant part of (7.18): A' = top-left of A_bar, B' = the block that feeds
+    // xi_1 (d_i > 0) or B_bar's plant rows (d_i = 0), C' with the IMU row from the beta chain input.
+    d.A = g.Ad.topLeftCorner(n, n);
+    d.B = s.di > 0 ? Eigen::MatrixXd(g.Ad.block(0, n, n, 1)) : Eigen::MatrixXd(g.Bd.topRows(n));
+    d.C = Eigen::MatrixXd(3, n);
+    d.C.topRows(2) = g.Cd.block(0, 0, 2, n);
+    d.C.row(2) = s.dout > 0 ? Eigen::RowVectorXd(g.Ad.block(n + s.di + s.dout - 1, 0, 1, n))
+                            : Eigen::RowVectorXd(g.Cd.block(2, 0, 1, n));
+    d.K = g.K;
+    d.L = g.Le;
+}
+
 ArmctrlDesign design_armctrl(const ArmctrlSpec& spec_in)
 {
     spec_in.validate();
@@ -171,27 +187,31 @@ ArmctrlDesign design_armctrl(const ArmctrlSpec& spec_in)
         // no delay model: the delays belong to the plant.
         d.check_reduced = check_closed_loop(g, reduced, kRigDi, kRigDo);
         d.check_unreduced = check_closed_loop(g, wang_arm_measured(s.N, s.r_t, s.r_r, false), kRigDi, kRigDo);
-        // frac/lqg.h takes the plant part of (7.18): A' = top-left of A_bar, B' = the block that feeds
-        // xi_1 (d_i > 0) or B_bar's plant rows (d_i = 0), C' with the IMU row from the beta chain input.
-        d.A = g.Ad.topLeftCorner(n, n);
-        d.B = s.di > 0 ? Eigen::MatrixXd(g.Ad.block(0, n, n, 1)) : Eigen::MatrixXd(g.Bd.topRows(n));
-        d.C = Eigen::MatrixXd(3, n);
-        d.C.topRows(2) = g.Cd.block(0, 0, 2, n);
-        d.C.row(2) = s.dout > 0 ? Eigen::RowVectorXd(g.Ad.block(n + s.di + s.dout - 1, 0, 1, n))
-                                : Eigen::RowVectorXd(g.Cd.block(2, 0, 1, n));
-        d.K = g.K;
-        d.L = g.Le;
+        armctrl_take_lqg(d, g);
     }
 
-    // The table, entries in the order of ArmCtrl.h.
+    d.kp = kKp;
+    d.kd = kKd;
+    d.fr_b1 = kB1;
+    d.fr_b0 = kB0;
+    d.fr_k = kTanh;
+    armctrl_fill_table(d, std::string("seed 004 (Wang) Exp. ") + s.exp + ": Table 8.5 trajectory, " +
+                              (s.exp == 'A' ? "rbFFC (4.14)-(4.17), PD + friction Table 8.6"
+                               : s.exp == 'B' ? "ibFFC (stable inversion Sec. 4.3), PD + friction Table 8.6"
+                               : s.exp == 'C' ? "ibFFC, LQG Table 8.7 (no delay model)"
+                                              : "ibFFC, LQG Table 8.8 with d_i, d_o and the Sec. 8.6 shifts"));
+    return d;
+}
+
+void armctrl_fill_table(ArmctrlDesign& d, const std::string& source)
+{
+    const ArmctrlSpec& s = d.spec;
+    const double T = s.T;
+    const long n_ff = static_cast<long>(d.ff[0].size());
     tables::ParamTable& t = d.table;
+    t = tables::ParamTable();
     t.name = "armctrl";
-    t.meta = {{"source", std::string("seed 004 (Wang) Exp. ") + s.exp +
-                             ": Table 8.5 trajectory, " +
-                             (s.exp == 'A' ? "rbFFC (4.14)-(4.17), PD + friction Table 8.6"
-                              : s.exp == 'B' ? "ibFFC (stable inversion Sec. 4.3), PD + friction Table 8.6"
-                              : s.exp == 'C' ? "ibFFC, LQG Table 8.7 (no delay model)"
-                                             : "ibFFC, LQG Table 8.8 with d_i, d_o and the Sec. 8.6 shifts")},
+    t.meta = {{"source", source},
               {"experiment", std::string(1, s.exp)},
               {"collocation_points", s.N},
               {"r_t", s.r_t},
@@ -215,8 +235,8 @@ ArmctrlDesign design_armctrl(const ArmctrlSpec& spec_in)
     t.add("watchdog", wd, "max stale cycles, ramp rate [N m/s]");
     if (s.exp == 'A' || s.exp == 'B') {
         Eigen::MatrixXd pd(1, 2), fr(1, 3);
-        pd << kKp, kKd;
-        fr << kB1, kB0, kTanh;
+        pd << d.kp, d.kd;
+        fr << d.fr_b1, d.fr_b0, d.fr_k;
         t.add("pd", pd, "K_P [N m/rad], K_D [N m s/rad] (Table 8.6)");
         t.add("friction", fr, "b_1 [N m s/rad], b_0 [N m], k (linear model (5.2), Table 8.6)");
     } else {
@@ -230,7 +250,6 @@ ArmctrlDesign design_armctrl(const ArmctrlSpec& spec_in)
         t.add("L", d.L, "predictor gain L_e (7.27)");
     }
     t.validate();
-    return d;
 }
 
 }  // namespace fracdesign::design

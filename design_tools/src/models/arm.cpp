@@ -18,6 +18,7 @@ void DriveParams::validate() const
     pos(I_h, "I_h");
     pos(c_s, "c_s");
     if (!std::isfinite(r_h) || r_h < 0) throw std::invalid_argument("drive: r_h must be finite and >= 0");
+    if (!std::isfinite(d_s) || d_s < 0) throw std::invalid_argument("drive: d_s must be finite and >= 0");
 }
 
 DriveParams wang_drive()
@@ -42,7 +43,11 @@ PhSystem drive_model(const DriveParams& d)
     ph.J = Eigen::MatrixXd::Zero(4, 4);  // (3.35)
     ph.J.topRightCorner(2, 2).setIdentity();
     ph.J.bottomLeftCorner(2, 2) = -Eigen::Matrix2d::Identity();
+    // Gear damping d_s on the twist rate theta_M' - theta_h' (co-energies 1/I_M p_M, 1/I_h p_h):
+    // R_pp = d_s [[1, -1], [-1, 1]] >= 0, so the PH power balance holds with this dissipation.
     ph.R = Eigen::MatrixXd::Zero(4, 4);
+    ph.R(2, 2) = ph.R(3, 3) = d.d_s;
+    ph.R(2, 3) = ph.R(3, 2) = -d.d_s;
     ph.B = Eigen::MatrixXd::Zero(4, 3);
     ph.B(2, 0) = 1.0;
     ph.B(3, 1) = d.r_h;

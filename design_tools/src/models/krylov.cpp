@@ -8,7 +8,7 @@ namespace fracdesign {
 
 std::vector<double> wang_krylov_shifts() { return {16.0, 18.43, 115.6}; }  // Table 8.4, rad/s
 
-PhSystem krylov_reduce(const PhSystem& full, const std::vector<double>& shifts)
+PhSystem krylov_reduce(const PhSystem& full, const std::vector<double>& shifts, Eigen::MatrixXd* basis)
 {
     if (shifts.empty()) throw std::invalid_argument("krylov: shifts must not be empty");
     for (double s : shifts)
@@ -47,6 +47,7 @@ PhSystem krylov_reduce(const PhSystem& full, const std::vector<double>& shifts)
     red.inputs = full.inputs;
     red.outputs = full.outputs;
     for (Eigen::Index k = 0; k < r; ++k) red.states.push_back("xr[" + std::to_string(k) + "]");
+    if (basis) *basis = V;
     return red;
 }
 

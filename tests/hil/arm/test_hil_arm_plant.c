@@ -123,6 +123,18 @@ static void test_bad_tables_are_refused_with_the_field_named(void **state)
     e[0].values = dims_bad;
     spit(path, w, ptw_write(w, sizeof w, "arm_plant", e, 3));
     expect_refused(path, "plant_dims");
+    /* plant_dims (n, N, P) with payload states P not 0, 2 or 4, and with n != 4 + 4 N + P */
+    {
+        static const double dims3_odd[3] = {43.0, 9.0, 3.0}, dims3_sum[3] = {44.0, 9.0, 2.0};
+        e[0].cols = 3;
+        e[0].values = dims3_odd;
+        spit(path, w, ptw_write(w, sizeof w, "arm_plant", e, 3));
+        expect_refused(path, "P in {0, 2, 4}");
+        e[0].values = dims3_sum;
+        spit(path, w, ptw_write(w, sizeof w, "arm_plant", e, 3));
+        expect_refused(path, "plant_dims (44, 9, 2)");
+        e[0].cols = 2;
+    }
     /* step not dividing T/2 */
     e[0].values = dims;
     e[1].values = &h_bad;

@@ -68,8 +68,16 @@ struct ArmctrlDesign {
     LoopCheck check_reduced, check_unreduced;
     Eigen::MatrixXd A, B, C, K, L;
     double I_l = 0.0;  // Exp. A rigid link inertia [kg m^2]
+    double kp = 0.0, kd = 0.0;                // Exp. A/B PD (5.1)
+    double fr_b1 = 0.0, fr_b0 = 0.0, fr_k = 0.0;  // Exp. A/B friction compensation (5.2)
     tables::ParamTable table;
 };
+
+// Builds d.table (entries in the order of ArmCtrl.h) from the filled design: spec (exp, T, torque limit,
+// watchdog), ff rows and grid, leads, and the PD/friction (A/B) or LQG matrices (C/D); meta "source".
+void armctrl_fill_table(ArmctrlDesign& d, const std::string& source);
+// The LQG entries of the table from a design (frac/lqg.h's convention): A', B', C' of (7.18), K, L_e.
+void armctrl_take_lqg(ArmctrlDesign& d, const LqgDesign& g);
 
 // Rigid link inertia I_l = I_h + I_b with I_b = rho((L + r_h)^3 - r_h^3)/3 of the Table 8.3 beam
 // (the thesis gives no I_b; notes 004b section 3).

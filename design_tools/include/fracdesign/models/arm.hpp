@@ -21,7 +21,8 @@ struct DriveParams {
     double I_h = 0.0;  // hub inertia [kg m^2]
     double c_s = 0.0;  // gear torsion stiffness [N m/rad]
     double r_h = 0.0;  // hub radius [m]
-    void validate() const;  // std::invalid_argument naming the field (non-finite, I, c_s <= 0, r_h < 0)
+    double d_s = 0.0;  // gear damping [N m s/rad] on the gear's twist rate (0 in the thesis's model)
+    void validate() const;  // std::invalid_argument naming the field (non-finite, I, c_s <= 0, r_h, d_s < 0)
 };
 
 // Seed 004 Table 8.2 with I_M = n^2 I_m = 160^2 * 2.29e-4 = 5.8624 kg m^2. The table prints the motor-side

@@ -16,7 +16,8 @@ namespace fracdesign {
 
 // Reduces `full` with one block of B columns per real shift (rad/s). Throws std::invalid_argument for
 // an empty/non-finite shift list, and std::runtime_error if s_i I - A is singular or the basis loses rank.
-PhSystem krylov_reduce(const PhSystem& full, const std::vector<double>& shifts);
+// V (n x r, orthonormal) is returned through `basis` when it is not null: x ~ V x_r.
+PhSystem krylov_reduce(const PhSystem& full, const std::vector<double>& shifts, Eigen::MatrixXd* basis = nullptr);
 
 // The thesis shifts of Table 8.4: {16, 18.43, 115.6} rad/s.
 std::vector<double> wang_krylov_shifts();
