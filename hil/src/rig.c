@@ -30,14 +30,14 @@ static const struct key keys[] = {
     U("drive.delay", drive.delay), D("drive.tau_current", drive.tau_current),
     D("drive.torque_rated", drive.torque_rated), D("drive.torque_peak", drive.torque_peak),
     D("drive.thermal_tau", drive.thermal_tau), U("drive.rpdo_timeout", drive.rpdo_timeout),
-    U("drive.heartbeat_syncs", drive.heartbeat_syncs), U("drive.encoder_bits", drive.encoder_bits),
+    U("drive.encoder_bits", drive.encoder_bits),
     U("drive.velocity_from_encoder", drive.velocity_from_encoder), D("drive.deadzone", drive.deadzone),
     D("drive.gain", drive.gain),
     U("imu.reading_cycles", imu.reading_cycles), D("imu.jitter_prob", imu.jitter_prob),
     D("imu.gyro_bias", imu.gyro_bias), D("imu.gyro_noise", imu.gyro_noise),
     D("imu.gyro_quant", imu.gyro_quant), D("imu.acc_bias", imu.acc_bias),
     D("imu.acc_noise", imu.acc_noise), D("imu.acc_quant", imu.acc_quant),
-    Q("imu.seed", imu.seed), U("imu.heartbeat_acqs", imu.heartbeat_acqs),
+    Q("imu.seed", imu.seed),
     D("plant.J", plant_p.J), D("plant.b", plant_p.b), D("plant.L", plant_p.L),
     D("plant.I_M", plant_p.I_M), D("plant.I_L", plant_p.I_L), D("plant.c_s", plant_p.c_s),
     I("plant.friction", plant_p.friction.model), R("plant.fric_k", plant_p.friction.k),
@@ -111,6 +111,7 @@ int hil_rig_config_set(struct hil_rig_config *c, const char *key, const char *va
         if (errno || end == value || *end || !(v > 0.0) || !isfinite(v))
             return HIL_E_FORMAT;
         c->drive.T = c->plant_p.T = c->ctrl.T = v;
+        c->imu.acq_period = v / 2.0; /* the plant's half cycle (hil/plant.h) */
         return HIL_OK;
     }
     for (i = 0; i < NKEYS; i++) {
