@@ -44,6 +44,10 @@ static int run_lockstep(const struct app_opts *o)
     if (!log || !csv || !meta)
         return 1;
     st = hil_rig_init(&rig, &o->cfg, log, csv);
+    if (st == HIL_E_STATE) {
+        fprintf(stderr, "hil_bench: the controller could not boot the devices: %s\n", rig.ctrl.boot_error);
+        return 1;
+    }
     if (st != HIL_OK) {
         fprintf(stderr, "hil_bench: invalid scenario parameters (%s)%s%s\n", hil_status_str(st),
                 rig.plant.err[0] ? ": " : "", rig.plant.err);

@@ -47,3 +47,6 @@ static const struct hil_od_entry entries[] = {
 };
 
 const struct hil_od hil_drive_od = {"fracarm HIL servo drive", entries, (int)(sizeof entries / sizeof entries[0])};
+
+/* the dictionary fits the devices' value arrays */
+typedef char hil_drive_od_fits[(sizeof entries / sizeof entries[0]) <= HIL_OD_MAX ? 1 : -1];

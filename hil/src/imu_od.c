@@ -36,3 +36,6 @@ static const struct hil_od_entry entries[] = {
 };
 
 const struct hil_od hil_imu_od = {"fracarm HIL tip IMU", entries, (int)(sizeof entries / sizeof entries[0])};
+
+/* the dictionary fits the devices' value arrays */
+typedef char hil_imu_od_fits[(sizeof entries / sizeof entries[0]) <= HIL_OD_MAX ? 1 : -1];

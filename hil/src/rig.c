@@ -243,6 +243,8 @@ static int enqueue(struct hil_rig *r, const struct hil_out *out, int from)
     return HIL_OK;
 }
 
+static int drain(struct hil_rig *r);
+
 int hil_rig_init(struct hil_rig *r, const struct hil_rig_config *c, FILE *log, FILE *csv)
 {
     struct hil_out out, out2;
@@ -261,9 +263,16 @@ int hil_rig_init(struct hil_rig *r, const struct hil_rig_config *c, FILE *log, F
     hil_rng_seed(&r->bus_rng, c->bus_seed);
     r->log = log;
     r->csv = csv;
-    /* the boot-up heartbeats go out with the first cycle */
     enqueue(r, &out, FROM_DRIVE);
     enqueue(r, &out2, FROM_IMU);
+    /* the controller boots the devices by SDO before cycle 0 (hil/ctrl.h);
+     * these frames are logged at t = 0 + 1 us per frame, cycle 0 continues
+     * the numbering */
+    out.n = 0;
+    hil_ctrl_boot(&r->ctrl, &out);
+    if (enqueue(r, &out, FROM_CTRL) != HIL_OK || drain(r) != HIL_OK || r->ctrl.boot_status != 1)
+        return HIL_E_STATE;
+    r->booted_slots = r->slot;
     if (csv)
         fprintf(csv, "t,ref,torque_cmd,motor_angle,motor_velocity,imu_rate,tip_angle,tip_velocity,"
                      "torque_actual,fault\n");
@@ -339,7 +348,7 @@ int hil_rig_cycle(struct hil_rig *r)
     int st;
     if (!r)
         return HIL_E_ARG;
-    r->slot = 0;
+    r->slot = r->ctrl.cycle == 0 ? r->booted_slots : 0;
     tip_angle = r->plant.psi;
     tip_rate = r->plant.psi_d;
     out.n = 0;

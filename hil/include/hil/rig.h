@@ -66,6 +66,7 @@ struct hil_rig {
     int q_from[HIL_RIG_QUEUE];
     int q_head, q_len;
     unsigned slot;             /* frames in the current cycle */
+    unsigned booted_slots;     /* frames of the boot (logged before cycle 0's) */
     FILE *log, *csv;
     struct hil_rig_stats st;
 };
@@ -85,9 +86,11 @@ int hil_rig_config_load(struct hil_rig_config *c, const char *path, int *line_no
 /* Sets one key from text; HIL_OK, HIL_E_UNKNOWN_ID or HIL_E_FORMAT. */
 int hil_rig_config_set(struct hil_rig_config *c, const char *key, const char *value);
 
-/* Initialises every node; log and csv may be NULL. The CSV header is written
- * here. Returns HIL_OK or HIL_E_ARG (a parameter failed validation; when the
- * plant refused, r->plant.err says why). */
+/* Initialises every node and boots the devices by SDO (hil_ctrl_boot; its
+ * frames go to the log); log and csv may be NULL. The CSV header is written
+ * here. Returns HIL_OK, HIL_E_ARG (a parameter failed validation; when the
+ * plant refused, r->plant.err says why) or HIL_E_STATE (the boot failed:
+ * r->ctrl.boot_error says why). */
 int hil_rig_init(struct hil_rig *r, const struct hil_rig_config *c, FILE *log, FILE *csv);
 /* Runs one controller cycle. HIL_OK, or HIL_E_FULL if the bus queue overflowed. */
 int hil_rig_cycle(struct hil_rig *r);
