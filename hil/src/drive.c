@@ -148,6 +148,12 @@ int hil_drive_set_bus_off(struct hil_drive *d, int off, struct hil_out *out)
     return HIL_OK;
 }
 
+/* The i^2t estimate is above the over-temperature trip 0x2101. */
+static int hot(const struct hil_drive *d)
+{
+    return d->thermal * 1e3 > (double)VAL(d, HIL_DRV_I2T_TRIP) * d->p.torque_rated * d->p.torque_rated;
+}
+
 static int cst(const struct hil_drive *d) { return (int8_t)VAL(d, HIL_DRV_MODE) == 10; }
 
 uint16_t hil_drive_statusword(const struct hil_drive *d)
@@ -181,7 +187,7 @@ static void controlword(struct hil_drive *d, uint16_t cw, struct hil_out *out)
     int reset_edge = (cw & 0x80u) && !(d->last_controlword & 0x80u);
     d->last_controlword = cw;
     if (reset_edge) {
-        if (s == HIL_CIA402_FAULT && d->overtemp)
+        if (s == HIL_CIA402_FAULT && hot(d))
             return; /* the cause persists: stay in fault */
         clear_errors(d, out);
         if (s == HIL_CIA402_FAULT)
@@ -252,6 +258,9 @@ static double shaft_torque(const struct hil_drive *d, double tau)
 /* Process values of the dictionary from the drive's state. */
 static void refresh(struct hil_drive *d)
 {
+    int64_t q;
+    hil_co_quantize(d->thermal / (d->p.torque_rated * d->p.torque_rated) * 1e3, 1.0, 0, 65535, &q);
+    VAL(d, HIL_DRV_I2T) = (uint32_t)q;
     VAL(d, HIL_DRV_STATUSWORD) = hil_drive_statusword(d);
     VAL(d, HIL_DRV_MODE_DISPLAY) = VAL(d, HIL_DRV_MODE);
 }
@@ -260,7 +269,7 @@ static void refresh(struct hil_drive *d)
 static void measure(struct hil_drive *d)
 {
     int64_t q, counts, scale = (int64_t)1 << (20 - d->p.encoder_bits);
-    double vel, cpr = (double)((int64_t)1 << d->p.encoder_bits), rated2 = d->p.torque_rated * d->p.torque_rated;
+    double vel, cpr = (double)((int64_t)1 << d->p.encoder_bits);
     /* encoder count (floor), in 2^20 wire units */
     hil_co_quantize(floor(d->theta * cpr / (2.0 * M_PI)), 1.0, INT32_MIN / scale, INT32_MAX / scale, &counts);
     VAL(d, HIL_DRV_POSITION) = (uint32_t)(int32_t)(counts * scale);
@@ -272,8 +281,6 @@ static void measure(struct hil_drive *d)
     VAL(d, HIL_DRV_TORQUE_MNM) = (uint32_t)(int32_t)q;
     hil_co_quantize(d->tau_act / d->p.torque_rated * 1e3, 1.0, INT16_MIN, INT16_MAX, &q);
     VAL(d, HIL_DRV_TORQUE_ACTUAL) = (uint32_t)(uint16_t)(int16_t)q;
-    hil_co_quantize(d->thermal / rated2 * 1e3, 1.0, 0, 65535, &q);
-    VAL(d, HIL_DRV_I2T) = (uint32_t)q;
     refresh(d);
 }
 
@@ -320,8 +327,7 @@ static void on_sync(struct hil_drive *d, struct hil_out *out)
         hil_out_push(out, &f);
     d->tau_act = tau_end;
     d->thermal += (d->p.T / d->p.thermal_tau) * (tau_end * tau_end - d->thermal);
-    d->overtemp = d->thermal * 1e3 > (double)VAL(d, HIL_DRV_I2T_TRIP) * d->p.torque_rated * d->p.torque_rated;
-    if (d->overtemp && d->state != HIL_CIA402_FAULT)
+    if (hot(d) && d->state != HIL_CIA402_FAULT)
         fault(d, HIL_EMCY_OVERTEMP, ER_TEMPERATURE, out);
     refresh(d);
     d->since_heartbeat++;

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # CTest fixture: a venv under the build directory with Python's cantools (not
-# packaged by Debian 12), the independent decoder of the rig's candump logs.
-# Installs from PyPI only when the venv does not already have it.
+# packaged by Debian 12), the independent decoder of the rig's candump logs,
+# and canopen + python-can, the independent CANopen master of
+# tests/hil/canopen_master.py. Installs from PyPI only what the venv lacks.
 set -euo pipefail
 venv=${1:?usage: setup_pyvenv.sh VENV_DIR}
 if [ ! -x "$venv/bin/python" ]; then
@@ -10,4 +11,8 @@ fi
 if ! "$venv/bin/python" -c 'import cantools' 2>/dev/null; then
   "$venv/bin/pip" install --quiet cantools
 fi
+if ! "$venv/bin/python" -c 'import canopen, can.interfaces.socketcand' 2>/dev/null; then
+  "$venv/bin/pip" install --quiet 'canopen>=2.3' 'python-can>=4.3'
+fi
 "$venv/bin/python" -c 'import cantools; print("cantools", cantools.__version__)'
+"$venv/bin/python" -c 'import canopen, can; print("canopen", canopen.__version__, "python-can", can.__version__)'

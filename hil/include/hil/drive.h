@@ -114,7 +114,6 @@ struct hil_drive {
     int limiting;
     double theta, omega;                  /* shaft state from the plant */
     unsigned since_rpdo, since_heartbeat;
-    int overtemp;                         /* i^2t above the trip level */
     struct hil_out *out_now;              /* where a write's actions send frames (during a call) */
     int64_t last_counts;                  /* encoder counts at the previous SYNC */
     uint64_t syncs, emcy_sent;
