@@ -294,10 +294,11 @@ static void on_sync(struct hil_drive *d, struct hil_out *out)
     int enabled;
 
     d->syncs++;
+    d->tx_syncs++;
     if (op) {
         measure(d);
         for (k = 0; k < d->pdo.ntx; k++) {
-            if (d->syncs % d->pdo.tx[k].trans != 0)
+            if (d->tx_syncs % d->pdo.tx[k].trans != 0)
                 continue;
             hil_pdo_pack(&v, &d->pdo.tx[k], &f);
             hil_out_push(out, &f);
@@ -331,7 +332,7 @@ static void on_sync(struct hil_drive *d, struct hil_out *out)
         fault(d, HIL_EMCY_OVERTEMP, ER_TEMPERATURE, out);
     refresh(d);
     d->since_heartbeat++;
-    if (VAL(d, HIL_DRV_HEARTBEAT) && (double)d->since_heartbeat * d->p.T * 1e3 >= (double)VAL(d, HIL_DRV_HEARTBEAT))
+    if (VAL(d, HIL_DRV_HEARTBEAT) && (double)d->since_heartbeat * d->p.T * 1e3 >= (double)VAL(d, HIL_DRV_HEARTBEAT) - 1e-9)
         heartbeat(d, out);
 }
 
@@ -353,6 +354,7 @@ static int nmt(struct hil_drive *d, const struct hil_can_frame *f, struct hil_ou
     if (d->nmt == HIL_NMT_STATE_OPERATIONAL && before != HIL_NMT_STATE_OPERATIONAL) {
         struct hil_od_dev v = hil_drive_od_dev(d);
         hil_pdo_compile(&v, &d->pdo); /* the PDO parameters written in pre-operational apply now */
+        d->tx_syncs = 0;             /* transmission type n: every n-th SYNC from the start */
     }
     heartbeat(d, out);
     return HIL_OK;

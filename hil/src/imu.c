@@ -142,7 +142,7 @@ static void acquire(struct hil_imu *m, double rate, double acc_t, struct hil_out
     m->npending -= k;
     m->since_heartbeat++;
     if (m->od[m->ix_heartbeat] &&
-        (double)m->since_heartbeat * m->p.acq_period * 1e3 >= (double)m->od[m->ix_heartbeat])
+        (double)m->since_heartbeat * m->p.acq_period * 1e3 >= (double)m->od[m->ix_heartbeat] - 1e-9)
         heartbeat(m, out);
 }
 

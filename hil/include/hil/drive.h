@@ -117,6 +117,7 @@ struct hil_drive {
     struct hil_out *out_now;              /* where a write's actions send frames (during a call) */
     int64_t last_counts;                  /* encoder counts at the previous SYNC */
     uint64_t syncs, emcy_sent;
+    uint64_t tx_syncs;                    /* SYNCs since NMT start (TPDO transmission types) */
     int bus_off;
 };
 
