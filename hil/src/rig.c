@@ -273,6 +273,7 @@ int hil_rig_init(struct hil_rig *r, const struct hil_rig_config *c, FILE *log, F
     if (enqueue(r, &out, FROM_CTRL) != HIL_OK || drain(r) != HIL_OK || r->ctrl.boot_status != 1)
         return HIL_E_STATE;
     r->booted_slots = r->slot;
+    r->st.boot_frames = r->st.frames_delivered;
     if (csv)
         fprintf(csv, "t,ref,torque_cmd,motor_angle,motor_velocity,imu_rate,tip_angle,tip_velocity,"
                      "torque_actual,fault\n");
@@ -521,13 +522,14 @@ int hil_rig_write_meta(const struct hil_rig *r, FILE *f, double wall_s)
     fprintf(f, "  \"counts\": {\"cycles\": %llu, \"frames_sent\": %llu, \"frames_lost\": %llu, "
                "\"frames_delivered\": %llu, \"frames_logged\": %llu, \"injected\": %llu, "
                "\"missed_inputs\": %llu, \"imu_readings\": %llu, \"faults\": %llu, \"emcy\": %llu, "
-               "\"law_status\": %u},\n",
+               "\"law_status\": %u, \"boot_frames\": %llu, \"sdo_requests\": %llu},\n",
             (unsigned long long)r->st.cycles, (unsigned long long)r->st.frames_sent,
             (unsigned long long)r->st.frames_lost, (unsigned long long)r->st.frames_delivered,
             (unsigned long long)r->st.frames_logged, (unsigned long long)r->st.injected,
             (unsigned long long)r->ctrl.missed_inputs, (unsigned long long)r->ctrl.imu_readings,
             (unsigned long long)r->ctrl.faults,
-            (unsigned long long)(r->ctrl.emcy_sent + r->drive.emcy_sent), r->ctrl.law_status);
+            (unsigned long long)(r->ctrl.emcy_sent + r->drive.emcy_sent), r->ctrl.law_status,
+            (unsigned long long)r->st.boot_frames, (unsigned long long)r->ctrl.sdo_requests);
     fprintf(f, "  \"rx\": {\n");
     rx_json(f, "drive", &r->drive.rx, 0);
     rx_json(f, "imu", &r->imu.rx, 0);

@@ -53,6 +53,7 @@ struct hil_rig_config {
 struct hil_rig_stats {
     uint64_t cycles, frames_sent, frames_lost, frames_delivered, frames_logged;
     uint64_t injected, bus_off_episodes;
+    uint64_t boot_frames;      /* frames of the SDO boot before cycle 0 */
 };
 
 struct hil_rig {
