@@ -63,8 +63,11 @@ uint32_t hil_pdo_param_check(const struct hil_od_dev *d, int i, uint32_t v)
         }
         return bits > 64u ? HIL_SDO_ABORT_PDO_LENGTH : 0;
     }
-    if (d->val[i - e->sub] != 0) /* sub-index 0 of the mapping */
-        return HIL_SDO_ABORT_STATE;
+    {
+        int n = slot(d, e->index, 0); /* the mapping's number of entries */
+        if (n < 0 || d->val[n] != 0)
+            return HIL_SDO_ABORT_STATE;
+    }
     if (v != 0 && mappable(d, v, is_rx(e->index)) < 0)
         return HIL_SDO_ABORT_NOT_MAPPABLE;
     return 0;
