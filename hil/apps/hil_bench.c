@@ -55,7 +55,7 @@ static int run_lockstep(const struct app_opts *o, const char *dir)
     static struct hil_rig rig;
     FILE *log = open_in(dir, "frames.log", "w"), *csv = open_in(dir, "signals.csv", "w"),
          *meta = open_in(dir, "meta.json", "w");
-    double t0, wall;
+    double t0, wall, boot_wall;
     int st, ok;
     if (!log || !csv || !meta) {
         if (log)
@@ -66,13 +66,19 @@ static int run_lockstep(const struct app_opts *o, const char *dir)
             fclose(meta);
         return 1;
     }
+    t0 = app_now();
     st = hil_rig_init(&rig, &o->cfg, log, csv);
+    boot_wall = app_now() - t0;
     if (st != HIL_OK || app_setup_law(&rig.ctrl, &o->cfg) != 0) {
-        if (st != HIL_OK)
+        if (st == HIL_E_STATE)
+            fprintf(stderr, "hil_bench: the controller could not boot the devices: %s\n", rig.ctrl.boot_error);
+        else if (st != HIL_OK)
             fprintf(stderr, "hil_bench: the scenario is refused: %s\n", rig.err);
         fclose(log);
         fclose(csv);
         fclose(meta);
+        if (st == HIL_E_STATE)
+            return 1;
         return 2;
     }
     t0 = app_now();
@@ -95,6 +101,8 @@ static int run_lockstep(const struct app_opts *o, const char *dir)
            wall > 0 ? rig.st.cycles * o->cfg.ctrl.T / wall : 0.0, (unsigned long long)rig.st.frames_sent,
            (unsigned long long)rig.st.frames_lost, (unsigned long long)rig.st.frames_logged,
            rig.plant.psi, rig.ctrl.sig.ref, rig.ctrl.law_status ? "; the law reported a fault" : "");
+    printf("hil_bench: boot by SDO before cycle 0: %llu frames, %llu SDO requests, %.3f ms wall\n",
+           (unsigned long long)rig.st.boot_frames, (unsigned long long)rig.ctrl.sdo_requests, 1e3 * boot_wall);
     if (rig.ctrl.law_status)
         printf("hil_bench: law status %u (ArmCtrl StatusID), faults %llu\n", rig.ctrl.law_status,
                (unsigned long long)rig.ctrl.faults);

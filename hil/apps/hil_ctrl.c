@@ -26,6 +26,7 @@ static int cmp_double(const void *a, const void *b)
  * in, 2 = the end of the physics step (RIG_IMU_DONE, sent by the IMU after
  * the plant's RIG_MOTOR and after its own TPDOs of that step) seen. */
 static int step_done;
+static uint64_t boot_seen; /* want = 3: a frame was accepted (an SDO answer during the boot) */
 
 static int serve(struct hil_transport *t, struct hil_ctrl *c, double until, int want)
 {
@@ -38,6 +39,10 @@ static int serve(struct hil_transport *t, struct hil_ctrl *c, double until, int 
             return 1;
         if (want == 2 && step_done)
             return 1;
+        if (want == 3 && (c->boot_status != 0 || c->rx.accepted + c->rx.bad_value != boot_seen)) {
+            boot_seen = c->rx.accepted + c->rx.bad_value;
+            return 1;
+        }
         left = until - app_now();
         if (left <= 0.0)
             return 0;
@@ -76,7 +81,7 @@ int main(int argc, char **argv)
     double *late, next, T, t0;
     long k, n, misses = 0, injected = 0, step_timeouts = 0;
     int lockstep = 0, i;
-    double step_timeout = 0.1;
+    double step_timeout = 0.1, sdo_boot_s = 0.0;
     /* hil_ctrl's own options, taken out before the common parser sees argv */
     for (i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--lockstep") == 0) {
@@ -131,7 +136,27 @@ int main(int argc, char **argv)
     if (csv)
         fprintf(csv, "t,ref,torque_cmd,motor_angle,motor_velocity,imu_rate,fault\n");
     app_open_bus(&t, o.bus);
-    t0 = next = app_now() + 0.05;
+    t0 = app_now();
+    serve(&t, &c, t0 + 0.05, 0);
+    /* boot the devices by SDO (hil/ctrl.h), each answer awaited at most step_timeout */
+    out.n = 0;
+    hil_ctrl_boot(&c, &out);
+    app_send_all(&t, &out);
+    while (c.boot_status == 0) {
+        uint64_t before = c.rx.accepted + c.rx.bad_value;
+        serve(&t, &c, app_now() + step_timeout, 3);
+        if (c.boot_status == 0 && c.rx.accepted + c.rx.bad_value == before) {
+            snprintf(c.boot_error, sizeof c.boot_error, "no SDO answer within %g s (drive step %d/%d, IMU %d/%d)",
+                     step_timeout, c.boot[0].at, c.boot[0].n, c.boot[1].at, c.boot[1].n);
+            c.boot_status = -1;
+        }
+    }
+    if (c.boot_status < 0) {
+        fprintf(stderr, "hil_ctrl: the devices did not boot: %s\n", c.boot_error);
+        return 1;
+    }
+    sdo_boot_s = app_now() - t0 - 0.05;
+    t0 = next = app_now() + 0.01;
     serve(&t, &c, next, 0);
     for (k = 0; k < n; k++) {
         double now;
@@ -173,8 +198,9 @@ int main(int argc, char **argv)
     serve(&t, &c, app_now() + 0.05, 0);
     qsort(late, (size_t)n, sizeof *late, cmp_double);
     printf("HIL_JITTER mode=%s cycles=%ld p50_us=%.1f p99_us=%.1f max_us=%.1f deadline_misses=%ld "
-           "step_timeouts=%ld wall_s=%.3f\n", lockstep ? "lockstep" : "realtime", n, 1e6 * late[n / 2],
-           1e6 * late[(size_t)((n - 1) * 0.99)], 1e6 * late[n - 1], misses, step_timeouts, app_now() - t0);
+           "step_timeouts=%ld wall_s=%.3f sdo_boot_ms=%.3f sdo_requests=%llu\n", lockstep ? "lockstep" : "realtime", n, 1e6 * late[n / 2],
+           1e6 * late[(size_t)((n - 1) * 0.99)], 1e6 * late[n - 1], misses, step_timeouts, app_now() - t0, 1e3 * sdo_boot_s,
+           (unsigned long long)c.sdo_requests);
     printf("HIL_CTRL cycles=%llu missed_inputs=%llu imu_readings=%llu faults=%llu emcy_received=%llu "
            "injected=%ld final_angle=%.6f\n",
            (unsigned long long)c.cycle, (unsigned long long)c.missed_inputs,

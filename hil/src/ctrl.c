@@ -1,8 +1,12 @@
 /* Controller node with the PD test law; behaviour in hil/ctrl.h. */
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 #include "hil/canopen.h"
 #include "hil/ctrl.h"
+#include "hil/drive.h"
+#include "hil/imu.h"
+#include "hil/sdo.h"
 
 void hil_ctrl_params_default(struct hil_ctrl_params *p)
 {
@@ -30,6 +34,119 @@ int hil_ctrl_init(struct hil_ctrl *c, const struct hil_ctrl_params *p)
     memset(c, 0, sizeof *c);
     c->p = *p;
     memset(c->hb_state, 0xFF, sizeof c->hb_state);
+    return HIL_OK;
+}
+
+static void add_step(struct hil_ctrl_boot_dev *b, uint16_t index, uint8_t sub, unsigned bytes, uint32_t v)
+{
+    if (b->n < HIL_CTRL_BOOT_MAX) {
+        struct hil_ctrl_sdo_step *s = &b->step[b->n++];
+        s->index = index;
+        s->sub = sub;
+        s->bytes = (uint8_t)bytes;
+        s->value = v;
+    }
+}
+
+static int64_t eds_value(const struct hil_od *od, uint16_t index, uint8_t sub, int *found)
+{
+    int i = hil_od_find(od, index, sub, NULL);
+    *found = i >= 0;
+    return i >= 0 ? od->e[i].dflt : 0;
+}
+
+/* The boot steps of one device from its dictionary table (= its EDS). */
+static void boot_plan(struct hil_ctrl_boot_dev *b, uint8_t node, const struct hil_od *od)
+{
+    int found, n, k;
+    memset(b, 0, sizeof *b);
+    b->node = node;
+    add_step(b, 0x1000, 0, 0, (uint32_t)eds_value(od, 0x1000, 0, &found));
+    add_step(b, 0x1018, 1, 0, (uint32_t)eds_value(od, 0x1018, 1, &found));
+    add_step(b, 0x1018, 2, 0, (uint32_t)eds_value(od, 0x1018, 2, &found));
+    for (n = 0; n < 2 * HIL_PDO_MAX; n++) {
+        uint16_t comm = (uint16_t)(n < HIL_PDO_MAX ? 0x1400 + n : 0x1800 + n - HIL_PDO_MAX);
+        uint32_t cob = (uint32_t)eds_value(od, comm, 1, &found), count;
+        if (!found)
+            continue;
+        add_step(b, comm, 1, 4, cob | 0x80000000u);
+        count = (uint32_t)eds_value(od, (uint16_t)(comm + 0x200), 0, &found);
+        add_step(b, (uint16_t)(comm + 0x200), 0, 1, 0);
+        for (k = 1; k <= (int)count; k++)
+            add_step(b, (uint16_t)(comm + 0x200), (uint8_t)k, 4, (uint32_t)eds_value(od, (uint16_t)(comm + 0x200), (uint8_t)k, &found));
+        if (count)
+            add_step(b, (uint16_t)(comm + 0x200), 0, 1, count);
+        add_step(b, comm, 2, 1, (uint32_t)eds_value(od, comm, 2, &found));
+        if (!(cob & 0x80000000u))
+            add_step(b, comm, 1, 4, cob);
+    }
+    add_step(b, 0x1017, 0, 2, (uint32_t)eds_value(od, 0x1017, 0, &found));
+    (void)eds_value(od, 0x6060, 0, &found);
+    if (found)
+        add_step(b, 0x6060, 0, 1, (uint32_t)eds_value(od, 0x6060, 0, &found));
+}
+
+static void boot_send(struct hil_ctrl *c, struct hil_ctrl_boot_dev *b, struct hil_out *out)
+{
+    struct hil_can_frame f;
+    const struct hil_ctrl_sdo_step *s = &b->step[b->at];
+    if (s->bytes)
+        hil_sdo_download_req(&f, b->node, s->index, s->sub, s->value, s->bytes);
+    else
+        hil_sdo_upload_req(&f, b->node, s->index, s->sub);
+    if (hil_out_push(out, &f) == HIL_OK)
+        c->sdo_requests++;
+}
+
+int hil_ctrl_boot(struct hil_ctrl *c, struct hil_out *out)
+{
+    struct hil_can_frame f;
+    int k;
+    if (!c || !out)
+        return HIL_E_ARG;
+    boot_plan(&c->boot[0], HIL_NODE_DRIVE, &hil_drive_od);
+    boot_plan(&c->boot[1], HIL_NODE_IMU, &hil_imu_od);
+    c->boot_status = 0;
+    c->boot_error[0] = '\0';
+    hil_co_nmt_encode(&f, HIL_NMT_RESET_COMM, 0);
+    hil_out_push(out, &f);
+    for (k = 0; k < 2; k++)
+        boot_send(c, &c->boot[k], out);
+    return HIL_OK;
+}
+
+/* An SDO response during the boot: check it, send the device's next step. */
+static int boot_response(struct hil_ctrl *c, const struct hil_can_frame *f, struct hil_out *out)
+{
+    struct hil_ctrl_boot_dev *b = &c->boot[f->id == HIL_COB_SDO_TX(HIL_NODE_DRIVE) ? 0 : 1];
+    const struct hil_ctrl_sdo_step *s;
+    uint32_t v = 0, ab = 0;
+    int st;
+    if (c->boot_status != 0 || b->at >= b->n) {
+        c->rx.other++;
+        return HIL_E_STATE;
+    }
+    s = &b->step[b->at];
+    st = hil_sdo_client_response(f, s->index, s->sub, &v, &ab);
+    if (st == HIL_E_FORMAT) {
+        c->rx.bad_value++;
+        return st;
+    }
+    c->rx.accepted++;
+    if (st == HIL_E_STATE || (s->bytes == 0 && v != s->value)) {
+        c->boot_status = -1;
+        if (st == HIL_E_STATE)
+            snprintf(c->boot_error, sizeof c->boot_error, "node %u: SDO %s 0x%04X:%u aborted 0x%08X (%s)",
+                     b->node, s->bytes ? "write" : "read", s->index, s->sub, (unsigned)ab, hil_sdo_abort_str(ab));
+        else
+            snprintf(c->boot_error, sizeof c->boot_error, "node %u: 0x%04X:%u is 0x%08X, the EDS says 0x%08X",
+                     b->node, s->index, s->sub, (unsigned)v, (unsigned)s->value);
+        return HIL_OK;
+    }
+    if (++b->at < b->n)
+        boot_send(c, b, out);
+    else if (c->boot[0].at >= c->boot[0].n && c->boot[1].at >= c->boot[1].n)
+        c->boot_status = 1;
     return HIL_OK;
 }
 
@@ -221,6 +338,9 @@ int hil_ctrl_on_frame(struct hil_ctrl *c, const struct hil_can_frame *f, struct 
     if (st != HIL_OK)
         return st;
     switch (f->id) {
+    case HIL_COB_SDO_TX(HIL_NODE_DRIVE):
+    case HIL_COB_SDO_TX(HIL_NODE_IMU):
+        return boot_response(c, f, out);
     case HIL_COB_TPDO1(HIL_NODE_DRIVE): {
         struct hil_drive_tpdo1 t;
         hil_co_drive_tpdo1_decode(f, &t);

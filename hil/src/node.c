@@ -1,6 +1,7 @@
 /* Frame dictionary check and output buffer shared by the nodes. */
 #include "hil/node.h"
 #include "hil/canopen.h"
+#include "hil/sdo.h"
 
 int hil_out_push(struct hil_out *out, const struct hil_can_frame *f)
 {
@@ -34,6 +35,10 @@ static int dict_dlc(uint32_t id)
     case HIL_COB_RIG_TIP:
     case HIL_COB_RIG_TIPPOS: return 8;
     case HIL_COB_RIG_IMU_DONE: return 2;
+    case HIL_COB_SDO_RX(HIL_NODE_DRIVE):
+    case HIL_COB_SDO_TX(HIL_NODE_DRIVE):
+    case HIL_COB_SDO_RX(HIL_NODE_IMU):
+    case HIL_COB_SDO_TX(HIL_NODE_IMU): return 8; /* SDO frames are always 8 bytes (CiA 301 7.2.4.3) */
     default: return -1;
     }
 }

@@ -30,14 +30,14 @@ static const struct key keys[] = {
     U("drive.delay", drive.delay), D("drive.tau_current", drive.tau_current),
     D("drive.torque_rated", drive.torque_rated), D("drive.torque_peak", drive.torque_peak),
     D("drive.thermal_tau", drive.thermal_tau), U("drive.rpdo_timeout", drive.rpdo_timeout),
-    U("drive.heartbeat_syncs", drive.heartbeat_syncs), U("drive.encoder_bits", drive.encoder_bits),
+    U("drive.encoder_bits", drive.encoder_bits),
     U("drive.velocity_from_encoder", drive.velocity_from_encoder), D("drive.deadzone", drive.deadzone),
     D("drive.gain", drive.gain),
     U("imu.reading_cycles", imu.reading_cycles), D("imu.jitter_prob", imu.jitter_prob),
     D("imu.gyro_bias", imu.gyro_bias), D("imu.gyro_noise", imu.gyro_noise),
     D("imu.gyro_quant", imu.gyro_quant), D("imu.acc_bias", imu.acc_bias),
     D("imu.acc_noise", imu.acc_noise), D("imu.acc_quant", imu.acc_quant),
-    Q("imu.seed", imu.seed), U("imu.heartbeat_acqs", imu.heartbeat_acqs),
+    Q("imu.seed", imu.seed),
     D("plant.J", plant_p.J), D("plant.b", plant_p.b), D("plant.L", plant_p.L),
     D("plant.I_M", plant_p.I_M), D("plant.I_L", plant_p.I_L), D("plant.c_s", plant_p.c_s),
     I("plant.friction", plant_p.friction.model), R("plant.fric_k", plant_p.friction.k),
@@ -150,6 +150,7 @@ int hil_rig_config_set(struct hil_rig_config *c, const char *key, const char *va
         if (errno || end == value || *end || !(v > 0.0) || !isfinite(v))
             return bad_value(c, HIL_E_FORMAT, key, value, "wants the cycle time in seconds, a finite number > 0");
         c->drive.T = c->plant_p.T = c->ctrl.T = v;
+        c->imu.acq_period = v / 2.0; /* the plant's half cycle (hil/plant.h) */
         return HIL_OK;
     }
     for (i = 0; i < NKEYS; i++) {
@@ -305,6 +306,8 @@ static int enqueue(struct hil_rig *r, const struct hil_out *out, int from)
     return HIL_OK;
 }
 
+static int drain(struct hil_rig *r);
+
 int hil_rig_init(struct hil_rig *r, const struct hil_rig_config *c, FILE *log, FILE *csv)
 {
     struct hil_out out, out2;
@@ -336,9 +339,17 @@ int hil_rig_init(struct hil_rig *r, const struct hil_rig_config *c, FILE *log, F
     r->log = log;
     r->csv = csv;
     r->log_max = HIL_RIG_LOG_MAX;
-    /* the boot-up heartbeats go out with the first cycle */
     enqueue(r, &out, FROM_DRIVE);
     enqueue(r, &out2, FROM_IMU);
+    /* the controller boots the devices by SDO before cycle 0 (hil/ctrl.h);
+     * these frames are logged at t = 0 + 1 us per frame, cycle 0 continues
+     * the numbering */
+    out.n = 0;
+    hil_ctrl_boot(&r->ctrl, &out);
+    if (enqueue(r, &out, FROM_CTRL) != HIL_OK || drain(r) != HIL_OK || r->ctrl.boot_status != 1)
+        return HIL_E_STATE;
+    r->booted_slots = r->slot;
+    r->st.boot_frames = r->st.frames_delivered;
     if (csv)
         fprintf(csv, "t,ref,torque_cmd,motor_angle,motor_velocity,imu_rate,tip_angle,tip_velocity,"
                      "torque_actual,fault\n");
@@ -424,7 +435,7 @@ int hil_rig_cycle(struct hil_rig *r)
     int st;
     if (!r)
         return HIL_E_ARG;
-    r->slot = 0;
+    r->slot = r->ctrl.cycle == 0 ? r->booted_slots : 0;
     tip_angle = r->plant.psi;
     tip_rate = r->plant.psi_d;
     out.n = 0;
@@ -597,13 +608,14 @@ int hil_rig_write_meta(const struct hil_rig *r, FILE *f, double wall_s)
     fprintf(f, "  \"counts\": {\"cycles\": %llu, \"frames_sent\": %llu, \"frames_lost\": %llu, "
                "\"frames_delivered\": %llu, \"frames_logged\": %llu, \"injected\": %llu, "
                "\"missed_inputs\": %llu, \"imu_readings\": %llu, \"faults\": %llu, \"emcy\": %llu, "
-               "\"law_status\": %u},\n",
+               "\"law_status\": %u, \"boot_frames\": %llu, \"sdo_requests\": %llu},\n",
             (unsigned long long)r->st.cycles, (unsigned long long)r->st.frames_sent,
             (unsigned long long)r->st.frames_lost, (unsigned long long)r->st.frames_delivered,
             (unsigned long long)r->st.frames_logged, (unsigned long long)r->st.injected,
             (unsigned long long)r->ctrl.missed_inputs, (unsigned long long)r->ctrl.imu_readings,
             (unsigned long long)r->ctrl.faults,
-            (unsigned long long)(r->ctrl.emcy_sent + r->drive.emcy_sent), r->ctrl.law_status);
+            (unsigned long long)(r->ctrl.emcy_sent + r->drive.emcy_sent), r->ctrl.law_status,
+            (unsigned long long)r->st.boot_frames, (unsigned long long)r->ctrl.sdo_requests);
     fprintf(f, "  \"rx\": {\n");
     rx_json(f, "drive", &r->drive.rx, 0);
     rx_json(f, "imu", &r->imu.rx, 0);

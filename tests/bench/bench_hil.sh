@@ -12,6 +12,14 @@
 #     under ArmCtrl Exp. D from its table (hil/scenarios/exp_d.txt), against
 #     the rigid test plant of 1. in the same run; goal >= 50x real time at
 #     N = 9; and the callgrind instructions per simulated second.
+#  4. CANopen (issue 18): the controller's boot of both devices by SDO before
+#     cycle 0 in the lockstep bench - simulated time as the bus time of its
+#     frames at 1 Mbit/s (47 + 8 DLC bits per frame, no stuffing: the
+#     in-process bus has no bit timing) and wall time - and an independent
+#     master (python canopen over hil_socketcand, tests/hil/canopen_master.py):
+#     expedited SDO round trip against the SYNC -> 3 TPDOs cycle on the same
+#     transport, and its boot of both devices (wall; simulated time does not
+#     advance during a boot: the drive's clock is the master's SYNC).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/lib.sh"
@@ -27,7 +35,9 @@ duration = 20
 plant = rigid
 SCEN
 speed() { sed -n 's/.*(\([0-9.]*\)x real time).*/\1/p'; }
-inproc=$("$bin/hil_bench" --scenario "$work/speed.txt" --out "$work/a" | speed)
+get() { echo "$1" | tr ' ' '\n' | sed -n "s/^$2=//p"; }
+inproc_out=$("$bin/hil_bench" --scenario "$work/speed.txt" --out "$work/a")
+inproc=$(echo "$inproc_out" | speed)
 sed -i 's/^duration = 20/duration = 2/' "$work/speed.txt"
 wall=$("$bin/hil_bench" --processes --scenario "$work/speed.txt" --out "$work/b" |
        sed -n 's/^HIL_JITTER .*wall_s=\([0-9.]*\).*/\1/p')
@@ -60,12 +70,31 @@ for N in 9 20; do
   printf '%-52s %12s %12s %8s\n' "N = $N, hil_rig_run incl. logs" "$ir_arm" "$ir_rigid" "$(ratio "$ir_arm" "$ir_rigid")"
 done
 
+echo
+bus_us() { awk -F'#' '/ 080#/ { exit } { n = length($2) / 2; us += 47 + 8 * n } END { printf "%.0f", us }' "$1"; }
+boot_frames=$(echo "$inproc_out" | sed -n 's/.*boot by SDO before cycle 0: \([0-9]*\) frames.*/\1/p')
+boot_sdo=$(echo "$inproc_out" | sed -n 's/.* \([0-9]*\) SDO requests.*/\1/p')
+boot_wall=$(echo "$inproc_out" | sed -n 's/.*SDO requests, \([0-9.]*\) ms wall.*/\1/p')
+boot_bus=$(bus_us "$work/a/frames.log")
+printf '%-52s %12s %12s %8s\n' "CANopen boot by the controller (lockstep bench)" "simulated" "wall" "ratio"
+printf '%-52s %12s %12s %8s\n' "both devices, $boot_frames frames, $boot_sdo SDO transfers [ms]" \
+  "$(awk -v u="$boot_bus" 'BEGIN { printf "%.2f", u / 1000 }')" "$boot_wall" "$(ratio "$(awk -v u="$boot_bus" 'BEGIN { printf "%.3f", u / 1000 }')" "$boot_wall")"
+printf '%-52s %12s %12s\n' "SDO round trip (2 frames; wall: boot / transfers) [us]" "222" "$(awk -v w="$boot_wall" -v n="$boot_sdo" 'BEGIN { printf "%.2f", 1000 * w / n }')"
+bash "$FRAC_SRC/tests/hil/setup_pyvenv.sh" "$build/pyvenv" >/dev/null
+master=$("$build/pyvenv/bin/python" "$FRAC_SRC/tests/hil/canopen_master.py" "$bin/hil_socketcand" \
+         "$FRAC_SRC/hil/drive.eds" "$FRAC_SRC/hil/imu.eds" 2>/dev/null | sed -n 's/^CANOPEN_MASTER //p')
+echo
+printf '%-52s %12s %12s %8s\n' "python canopen master over socketcand (TCP loopback)" "SDO" "SYNC->TPDOs" "ratio"
+printf '%-52s %12s %12s %8s\n' "round trip, median [us]" "$(get "$master" sdo_round_trip_us_median)" \
+  "$(get "$master" cycle_us_median)" "$(ratio "$(get "$master" sdo_round_trip_us_median)" "$(get "$master" cycle_us_median)")"
+printf '%-52s %12s\n' "SDO round trip p99 [us]" "$(get "$master" sdo_round_trip_us_p99)"
+printf '%-52s %12s\n' "boot of both devices (reset, identity, remap, start) [ms]" "$(get "$master" boot_wall_ms)"
+
 cat > "$work/rt.txt" <<SCEN
 T = 0.0012
 duration = 3
 plant = rigid
 SCEN
-get() { echo "$1" | tr ' ' '\n' | sed -n "s/^$2=//p"; }
 # normal scheduling, then SCHED_FIFO 50 (hil_bench --rt-priority, chrt for the
 # reference); the FIFO row needs the privilege, else it repeats the first.
 for sched in normal fifo; do

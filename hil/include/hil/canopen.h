@@ -75,7 +75,7 @@
 #define HIL_EMCY_HEARTBEAT 0x8130u    /* life guard / heartbeat error */
 #define HIL_EMCY_RPDO_TIMEOUT 0x8250u /* drive: no setpoint within the timeout */
 #define HIL_EMCY_BUS_OFF_RECOVERED 0x8140u /* recovered from bus off */
-#define HIL_EMCY_EXCESS_TORQUE 0x8311u /* drive: command beyond the torque limit */
+#define HIL_EMCY_OVERTEMP 0x4310u      /* drive: excess temperature drive (CiA 402), i^2t above its trip */
 
 /* CiA 402 controlword bits and commands, statusword masks. */
 #define HIL_CW_SHUTDOWN 0x0006u

@@ -1,6 +1,21 @@
 /* The controller node: NMT master, SYNC producer and the control law, seen
  * from the bus exactly as the PLC's Cyclic #1 task.
  *
+ * Boot (hil_ctrl_boot, before cycle 0), as a CANopen manager boots its
+ * slaves: NMT "reset communication" to all, then per device (drive and IMU
+ * in parallel, one SDO request outstanding per device) the SDO steps
+ * derived from the device's object dictionary table, i.e. from the values
+ * of its EDS (hil/drive.eds, hil/imu.eds; test hil_eds_matches_table):
+ * read 0x1000 (device type) and 0x1018:1/2 (vendor, product) and compare
+ * them with the EDS; for every PDO of the EDS write its COB-ID with bit 31
+ * set (not valid), its mapping (sub 0 = 0, the EDS's entries, sub 0 = n)
+ * and transmission type, then its COB-ID (valid as in the EDS); write
+ * 0x1017 (heartbeat) and, for the drive, 0x6060 (mode of operation, 10
+ * CST). A mismatch, an abort or no answer fails the boot (boot_status < 0,
+ * boot_error says which step and why) and the node never starts the bus.
+ * The PDO layouts the controller decodes (hil/canopen.h codec) are the ones
+ * it writes here; test_hil_sdo checks they are the EDS's.
+ *
  * Cycle k: hil_ctrl_tick() sends SYNC(k) (preceded at k = 0 by NMT "start
  * all"); the drive answers with TPDO1/TPDO2 (shaft at t_k); as soon as both
  * are in, the law runs and the RPDO (controlword + target torque) goes out.
@@ -62,8 +77,26 @@ struct hil_ctrl_signals {   /* what the controller saw and did in one cycle */
     int fault;
 };
 
+#define HIL_CTRL_BOOT_MAX 64 /* SDO steps per device */
+
+struct hil_ctrl_sdo_step {
+    uint16_t index;
+    uint8_t sub, bytes;  /* bytes: value size, 0 = an upload to compare with value */
+    uint32_t value;
+};
+
+struct hil_ctrl_boot_dev {
+    uint8_t node;
+    struct hil_ctrl_sdo_step step[HIL_CTRL_BOOT_MAX];
+    int n, at;             /* steps, the one outstanding */
+};
+
 struct hil_ctrl {
     struct hil_ctrl_params p;
+    struct hil_ctrl_boot_dev boot[2]; /* drive, IMU */
+    int boot_status;          /* 0 not started / running, 1 booted, < 0 failed */
+    char boot_error[160];
+    uint64_t sdo_requests;
     struct hil_rx_stats rx;
     uint64_t cycle;           /* cycles started (SYNCs sent) */
     uint8_t sync_counter;
@@ -90,6 +123,11 @@ struct hil_ctrl {
  * torque_max 251 Nm, T 1.2 ms. */
 void hil_ctrl_params_default(struct hil_ctrl_params *p);
 int hil_ctrl_init(struct hil_ctrl *c, const struct hil_ctrl_params *p);
+/* Starts the boot (above): appends NMT reset communication and the first
+ * SDO request of each device. The boot then advances in hil_ctrl_on_frame
+ * with each SDO response; boot_status becomes 1 or negative. */
+int hil_ctrl_boot(struct hil_ctrl *c, struct hil_out *out);
+
 /* Replaces the PD test law by `law` (NULL restores it). */
 void hil_ctrl_set_law(struct hil_ctrl *c, hil_ctrl_law law, void *ctx);
 /* Starts cycle k = c->cycle: NMT at k = 0, SYNC(k). */

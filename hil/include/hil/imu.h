@@ -13,11 +13,23 @@
  * Effects per channel: bias, white Gaussian noise (std per sample) and
  * quantization to a multiple of quant (0: the wire resolution). Values beyond
  * the int16 wire range saturate and set status bit 0. Each RIG_MOTOR (end of
- * a plant step) is answered with RIG_IMU_DONE (hil/canopen.h). */
+ * a plant step) is answered with RIG_IMU_DONE (hil/canopen.h).
+ *
+ * CANopen device (CiA 301): the object dictionary hil_imu_od (imu_od.c,
+ * hil/imu.eds) holds the readings (0x2000 rate, 0x2001 acceleration, 0x2002
+ * sequence, 0x2003 status) and the communication parameters; SDO server on
+ * 0x602/0x582 (hil/sdo.h); its TPDOs are the dictionary's 0x18xx/0x1Axx
+ * values compiled at NMT start, event-driven (transmission type 254/255:
+ * each valid TPDO once per reading; other types are refused with abort
+ * 0x06090030), by default the frames of hil/canopen.h. Heartbeat every
+ * 0x1017 ms of acquisition-counted time (acq_period per acquisition). */
 #ifndef HIL_IMU_H
 #define HIL_IMU_H
 #include "hil/node.h"
+#include "hil/od.h"
+#include "hil/pdo.h"
 #include "hil/rng.h"
+#include "hil/sdo.h"
 
 #define HIL_IMU_MAX_PENDING 16
 
@@ -27,13 +39,19 @@ struct hil_imu_params {
     double gyro_bias, gyro_noise, gyro_quant;  /* [rad/s] */
     double acc_bias, acc_noise, acc_quant;     /* [m/s^2] */
     uint64_t seed;
-    unsigned heartbeat_acqs;  /* heartbeat period in acquisitions, >= 1 */
+    double acq_period;        /* acquisition period [s] > 0 (the plant's half cycle, T/2) */
 };
 
 struct hil_imu_sample { double rate, acc_r, acc_t; unsigned due; };
 
+extern const struct hil_od hil_imu_od;
+
 struct hil_imu {
     struct hil_imu_params p;
+    uint32_t od[HIL_OD_MAX];  /* values of hil_imu_od's entries */
+    int16_t ix_rate, ix_acc, ix_seq, ix_status, ix_heartbeat; /* positions in the dictionary */
+    struct hil_sdo_server sdo;
+    struct hil_pdo_set pdo;   /* TPDOs in effect since NMT start */
     struct hil_rx_stats rx;
     struct hil_rng rng;
     uint8_t nmt;
@@ -47,12 +65,15 @@ struct hil_imu {
 };
 
 /* Thesis defaults: 4 acquisitions per reading, no jitter, no noise/bias,
- * wire quantization, seed 1, heartbeat every 167 acquisitions (~100 ms). */
+ * wire quantization, seed 1, acquisitions every 0.6 ms. */
 void hil_imu_params_default(struct hil_imu_params *p);
 /* Validates p, seeds the generator, appends the boot-up heartbeat.
  * Returns HIL_OK or HIL_E_ARG (node untouched). */
 int hil_imu_init(struct hil_imu *m, const struct hil_imu_params *p, struct hil_out *out);
 /* Consumes one bus frame; same contract as hil_drive_on_frame. */
 int hil_imu_on_frame(struct hil_imu *m, const struct hil_can_frame *f, struct hil_out *out);
+
+/* The IMU's dictionary as the SDO server and PDOs see it. */
+struct hil_od_dev hil_imu_od_dev(struct hil_imu *m);
 
 #endif

@@ -60,6 +60,7 @@ struct hil_rig_config {
 struct hil_rig_stats {
     uint64_t cycles, frames_sent, frames_lost, frames_delivered, frames_logged;
     uint64_t injected, bus_off_episodes;
+    uint64_t boot_frames;      /* frames of the SDO boot before cycle 0 */
 };
 
 struct hil_rig {
@@ -73,6 +74,7 @@ struct hil_rig {
     int q_from[HIL_RIG_QUEUE];
     int q_head, q_len;
     unsigned slot;             /* frames in the current cycle */
+    unsigned booted_slots;     /* frames of the boot (logged before cycle 0's) */
     FILE *log, *csv;
     unsigned long log_bytes;   /* bytes written to log so far */
     unsigned long log_max;     /* bound of log_bytes: HIL_RIG_LOG_MAX after init, the caller may lower it */
@@ -99,9 +101,10 @@ int hil_rig_config_load(struct hil_rig_config *c, const char *path, int *line_no
  * [0, 1)); c->err says "KEY = 'VALUE': what is allowed". */
 int hil_rig_config_set(struct hil_rig_config *c, const char *key, const char *value);
 
-/* Initialises every node; log and csv may be NULL. The CSV header is written
- * here. Returns HIL_OK or HIL_E_ARG (a parameter failed validation; r->err
- * says which). */
+/* Initialises every node and boots the devices by SDO (hil_ctrl_boot; its
+ * frames go to the log); log and csv may be NULL. The CSV header is written
+ * here. Returns HIL_OK, HIL_E_ARG (a parameter failed validation; r->err says
+ * which) or HIL_E_STATE (the boot failed: r->ctrl.boot_error says why). */
 int hil_rig_init(struct hil_rig *r, const struct hil_rig_config *c, FILE *log, FILE *csv);
 /* Runs one controller cycle. HIL_OK, or HIL_E_FULL if the bus queue
  * overflowed or the log reached HIL_RIG_LOG_MAX (r->err says which). */

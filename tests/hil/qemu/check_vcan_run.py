@@ -113,7 +113,10 @@ def main():
     check(readings >= 2 * cycles // 4 - 2 and readings == count(0x282, 8),
           "IMU TPDO1/TPDO2 frames %d/%d, one reading per 4 acquisitions" % (readings, count(0x282, 8)))
     check(count(0x6F4, 2) == cycles, "IMU step-complete frames %d == cycles" % count(0x6F4, 2))
-    check(count(0x000, 2) == 2, "NMT start and stop sent")
+    check(count(0x000, 2) == 3, "NMT reset communication (boot), start and stop sent")
+    check(count(0x601, 8) == count(0x581, 8) > 20 and count(0x602, 8) == count(0x582, 8) > 20,
+          "boot by SDO over vcan0: every request to the drive (%d) and the IMU (%d) answered"
+          % (count(0x601, 8), count(0x602, 8)))
     injected = int(ctrl["injected"])
     check(injected == 2 * (cycles // inject_every), "malformed frames injected: %d" % injected)
     check(count(0x201, 5) == injected // 2 and count(0x555, 8) == injected // 2,
