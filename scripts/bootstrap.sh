@@ -14,6 +14,7 @@ PKGS=(
   gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi
   qemu-system-x86 linux-image-amd64 busybox-static cpio kmod
   python3 python3-numpy python3-scipy python3-venv
+  python3-dev pybind11-dev
 )
 # FRAC_BOOTSTRAP_EXTRA: extra package names, used by the bootstrap's own test.
 # shellcheck disable=SC2206
