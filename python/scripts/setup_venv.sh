@@ -24,7 +24,8 @@ cat > "$venv/bin/fracarm-fleet" <<PYEOF
 #!$venv/bin/python
 import sys
 from fracarm.fleet.cli import main
-sys.exit(main())
+if __name__ == "__main__":  # Dask's worker processes re-import the main module
+    sys.exit(main())
 PYEOF
 chmod +x "$venv/bin/fracarm-fleet"
 "$py" -c 'import fracarm, fracarm.fleet; print("fracarm", fracarm.__file__)'
