@@ -63,7 +63,14 @@ frac_fo_params op_params(const py::dict& d, double order, double ts)
     return p;
 }
 
-py::array_t<double> like(size_t n) { return py::array_t<double>(py::ssize_t(n)); }
+// A 1-D array of n entries (explicit shape: the count constructor of pybind11
+// 2.10 leaves a zero stride).
+template <typename T>
+py::array_t<T> vec(size_t n)
+{
+    return py::array_t<T>(std::vector<py::ssize_t>{py::ssize_t(n)});
+}
+py::array_t<double> like(size_t n) { return vec<double>(n); }
 
 // Returns y, or (y, statuses) when `status` is true.
 py::object result(py::array_t<double> y, py::array_t<int> st, bool status)
@@ -101,7 +108,7 @@ public:
     {
         const size_t n = size_t(x.size());
         auto y = like(n);
-        py::array_t<int> st(py::ssize_t(status ? n : 0));
+        py::array_t<int> st = vec<int>(status ? n : 0);
         const double* xi = x.data();
         double* yo = y.mutable_data();
         int* so = st.mutable_data();
@@ -166,7 +173,7 @@ public:
         if (r.size() != y.size()) throw py::value_error("r and y must have the same length");
         const size_t n = size_t(r.size());
         auto u = like(n);
-        py::array_t<int> st(py::ssize_t(status ? n : 0));
+        py::array_t<int> st = vec<int>(status ? n : 0);
         const double *ri = r.data(), *yi = y.data();
         double* uo = u.mutable_data();
         int* so = st.mutable_data();
@@ -221,7 +228,7 @@ public:
         if (ref.size() != meas.size()) throw py::value_error("ref and meas must have the same length");
         const size_t n = size_t(ref.size());
         auto u = like(n);
-        py::array_t<int> st(py::ssize_t(status ? n : 0));
+        py::array_t<int> st = vec<int>(status ? n : 0);
         const double *ri = ref.data(), *mi = meas.data();
         double* uo = u.mutable_data();
         int* so = st.mutable_data();
@@ -280,7 +287,7 @@ public:
     }
     py::array_t<double> x() const
     {
-        py::array_t<double> v{py::ssize_t(n_)};
+        py::array_t<double> v = vec<double>(n_);
         std::copy(kf_.x, kf_.x + n_, v.mutable_data());
         return v;
     }
@@ -360,7 +367,7 @@ public:
         if (size_t(y_ref.size()) != N * p_ || size_t(y.size()) != N * p_)
             throw py::value_error("y_ref and y: must be N x " + std::to_string(p_) + " with N = len(u_star)");
         auto u = like(N);
-        py::array_t<int> st(py::ssize_t(status ? N : 0));
+        py::array_t<int> st = vec<int>(status ? N : 0);
         double* uo = u.mutable_data();
         int* so = st.mutable_data();
         for (size_t k = 0; k < N; ++k) {
@@ -409,7 +416,7 @@ private:
     {
         const size_t n = size_t(q.size());
         auto y = like(n);
-        py::array_t<int> st(py::ssize_t(status ? n : 0));
+        py::array_t<int> st = vec<int>(status ? n : 0);
         double* yo = y.mutable_data();
         int* so = st.mutable_data();
         for (size_t k = 0; k < n; ++k) {
@@ -442,7 +449,7 @@ public:
         if (q1.size() != q2.size()) throw py::value_error("x1 and x2 must have the same length");
         const size_t n = size_t(q1.size());
         auto z = like(n);
-        py::array_t<int> st(py::ssize_t(status ? n : 0));
+        py::array_t<int> st = vec<int>(status ? n : 0);
         double* zo = z.mutable_data();
         int* so = st.mutable_data();
         for (size_t k = 0; k < n; ++k) {

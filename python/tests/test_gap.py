@@ -19,7 +19,7 @@ def record(tmp_path_factory):
     d = tmp_path_factory.mktemp("rec")
     lines = [l for l in open(os.path.join(SRC, "hil", "scenarios", "demo.txt"))
              if not l.startswith("plant.fric") and not l.startswith("#")]
-    (d / "s.txt").write_text("".join(lines) + "drive.gain = 0.83\n")
+    (d / "s.txt").write_text("".join(lines) + "plant.friction = 2\ndrive.gain = 0.83\n")
     subprocess.run([HIL_BENCH, "--scenario", str(d / "s.txt"), "--out", str(d / "run")], check=True, stdout=subprocess.DEVNULL)
     return str(d / "run" / "signals.csv")
 
