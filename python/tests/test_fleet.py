@@ -137,13 +137,17 @@ def test_killed_worker_loses_nothing(records, table, cluster, tmp_path):
             killed.append((addr, pids[addr]))
             os.kill(pids[addr], signal.SIGKILL)
 
-    t = fleet.diagnose(os.path.join(out, "manifest.csv"), str(tmp_path), client=cluster, on_result=kill_one)
+    # 12 records (10 good, the 2 bad) keep the rerun short; each worker holds several when one is killed.
+    m = fleet.read_manifest(os.path.join(out, "manifest.csv"))
+    m = pd.concat([m.head(10), m.tail(2)]).reset_index(drop=True)
+    first = first[first["record"].isin(m["record"])].reset_index(drop=True)
+    t = fleet.diagnose(m, str(tmp_path), client=cluster, on_result=kill_one)
     assert killed
     cluster.wait_for_workers(2, timeout=60)
     assert killed[0][1] not in cluster.run(os.getpid).values()  # that process is gone (the nanny restarted one)
     assert len(t) == len(first)
     for col in ("record", "verdict", "params", "gap_before", "gap_after", "error"):
-        pd.testing.assert_series_equal(t[col], first[col])
+        pd.testing.assert_series_equal(t[col], first[col], check_names=True)
     for rec in t["record"][t["error"].isna()]:
         assert os.path.exists(os.path.join(str(tmp_path), "records", rec, "result.json"))
 
