@@ -12,7 +12,7 @@ PKGS=(
   build-essential cmake pkg-config git
   libeigen3-dev libceres-dev libopenblas-dev nlohmann-json3-dev zlib1g-dev libboost-dev
   libcmocka-dev libgtest-dev
-  python3
+  python3 python3-dev pybind11-dev
 )
 # `bootstrap.sh check` (make check): additionally what only the tests and gates use.
 PKGS_CHECK=(

@@ -1,0 +1,31 @@
+// run.hpp - the whole `fracdesign gap` pipeline behind one call, for callers
+// other than the CLI (the Python package fracarm, issue 20): nominal model +
+// record(s) + options -> result.json document and report.html, exactly as
+// cmd_gap.cpp assembles them (gap::diagnose, gap::result_json with the
+// "command" key, report::gap_report_html).
+#pragma once
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "fracdesign/gap/diagnosis.hpp"
+
+namespace fracdesign {
+namespace gap {
+
+struct GapRun {
+    GapResult result;
+    nlohmann::json json;      // result.json: result_json(result) plus "command"
+    std::string report_html;  // report.html
+};
+
+// Diagnoses `data` (and `validate`, may be null) against `model`; `command`
+// is recorded in result.json and the report as the command that made them.
+GapRun run_diagnosis(const NominalModel& model, const Signals& data, const Signals* validate, const GapOptions& opt,
+                     const std::string& command);
+
+// A record from signal-CSV text with the same strict checks and messages as
+// load_signals() (they name `origin` where load_signals names the file).
+Signals signals_from_csv_text(const std::string& text, const std::string& origin);
+
+}  // namespace gap
+}  // namespace fracdesign

@@ -1,0 +1,6 @@
+"""python -m fracarm.fleet: the fracarm-fleet CLI."""
+import sys
+
+from .cli import main
+
+sys.exit(main())
