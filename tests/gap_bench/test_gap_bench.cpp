@@ -1,4 +1,4 @@
-// test_gap_bench.cpp - gap-bench (src/gap/bench.cpp): the scoring on
+// test_gap_bench.cpp - gap-bench (bench/src/gap_bench.cpp): the scoring on
 // synthetic answers (accuracy, confusion matrix, parameter error, shrink),
 // the case draw (deterministic, every label equally often, the rig keys in
 // the scenario), the bench nominal against the effect-free rig, a small
@@ -16,8 +16,10 @@
 #include <set>
 #include <sstream>
 
-#include "fracdesign/gap/bench.hpp"
+#include "fracbench/families.hpp"
+#include "fracbench/gap_bench.hpp"
 
+using namespace fracbench;
 using namespace fracdesign::gap;
 
 namespace {
@@ -215,8 +217,8 @@ TEST(GapBenchCli, usage_errors_exit_2_with_one_line)
 {
     namespace fs = std::filesystem;
     const fs::path err = fs::temp_directory_path() / ("gap_bench_err_" + std::to_string(::getpid()) + ".txt");
-    for (const std::string args : {"--cases 0", "--cases 3 --replay 3", "--seed -1", "--duration 0.1", "--bogus 1"}) {
-        const std::string cmd = std::string(FRACDESIGN_EXE) + " gap-bench " + args + " > /dev/null 2> " + err.string();
+    for (const std::string args : {"--cases 0", "--cases 3 --replay 3", "--seed -1", "--duration 0.1", "--bogus 1", "--family wobble"}) {
+        const std::string cmd = std::string(GAP_BENCH_EXE) + " " + args + " > /dev/null 2> " + err.string();
         const int rc = std::system(cmd.c_str());
         ASSERT_TRUE(WIFEXITED(rc)) << args;
         EXPECT_EQ(WEXITSTATUS(rc), 2) << args;
@@ -258,12 +260,12 @@ TEST(GapBenchRun, gear_damping_is_found_in_the_gear)
 // default 60 cases with it).
 TEST(GapBenchCli, require_goals_exits_1_when_a_goal_is_missed)
 {
-    const std::string base = std::string(FRACDESIGN_EXE) + " gap-bench --cases 3 --seed 1 --duration 1.2 --require-goals";
+    const std::string base = std::string(GAP_BENCH_EXE) + " --cases 3 --seed 1 --duration 1.2 --require-goals";
     int rc = std::system((base + " --noise 2 > /dev/null").c_str());
     ASSERT_TRUE(WIFEXITED(rc));
     EXPECT_EQ(WEXITSTATUS(rc), 1);
     rc = std::system((base + " --json --noise 2 > /dev/null").c_str());
     EXPECT_EQ(WEXITSTATUS(rc), 1);
-    rc = std::system((std::string(FRACDESIGN_EXE) + " gap-bench --cases 3 --seed 1 --duration 1.2 --noise 2 > /dev/null").c_str());
+    rc = std::system((std::string(GAP_BENCH_EXE) + " --cases 3 --seed 1 --duration 1.2 --noise 2 > /dev/null").c_str());
     EXPECT_EQ(WEXITSTATUS(rc), 0);
 }
