@@ -156,7 +156,7 @@ TruthEffect draw_effect(const std::string& e, const Plant& p, double peak, hil_r
     t.effect = e;
     auto key = [&](const std::string& k, double v) { t.rig.push_back({k, format_value(v)}); };
     if (e == "input_delay") {
-        in.extra_delay = 1 + int(hil_rng_u64(rng) % 3);
+        in.extra_delay = 3 + int(hil_rng_u64(rng) % 8);
         key("drive.extra_delay_samples", in.extra_delay);
         t.params = {{"delay_s", in.extra_delay * kTs}};
     } else if (e == "output_delay") {
