@@ -9,7 +9,8 @@
 #     or bench include directory (so no such header can be included), or
 #     their link lines name a hil, plc or bench library,
 #   - a design_tools source includes a hil, plc_blocks or bench header.
-# With FRAC_BUILD_ALONE=1 it also builds and installs fracdesign there.
+# With FRAC_BUILD_ALONE=1 it also builds that tree (libfrac, fracdesign) and
+# installs it.
 # usage: builds_alone.sh SOURCE_DIR BINDIR
 set -euo pipefail
 src=$1 bin=$2
@@ -32,7 +33,7 @@ if grep -rEn '#[[:space:]]*include[[:space:]]*[<"](hil/|fracbench/|plctypes\.h|F
   fail "a design_tools source includes a hil/plc_blocks/bench header (above)"
 fi
 if [ "${FRAC_BUILD_ALONE:-0}" = 1 ]; then
-  cmake --build "$bin" --target fracdesign -j 2 > "$bin.build.log" 2>&1 || { tail -30 "$bin.build.log" >&2; fail "build failed"; }
+  cmake --build "$bin" -j 2 > "$bin.build.log" 2>&1 || { tail -30 "$bin.build.log" >&2; fail "build failed"; }
   cmake --install "$bin" --prefix "$bin/prefix" > /dev/null || fail "install failed"
   "$bin/prefix/bin/fracdesign" --help > /dev/null || fail "the installed fracdesign does not run"
 fi
