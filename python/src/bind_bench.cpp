@@ -1,7 +1,7 @@
 // bind_bench.cpp - gap-bench's scoring for shards run apart (issue 20).
 //
-// fracarm.fleet runs each gap-bench case as its own task (`fracdesign
-// gap-bench --replay ID`, the bench's one-case entry) and scores the gathered
+// fracarm.fleet runs each gap-bench case as its own task (`gap-bench
+// --replay ID`, the bench's one-case entry) and scores the gathered
 // cases here with the bench's own score_bench, into the "score" and
 // "confusion" sections run_bench writes, so a sharded bench and the
 // single-machine bench report the same figures for the same seed.
@@ -11,7 +11,7 @@
 #include <limits>
 #include <string>
 
-#include "fracdesign/gap/bench.hpp"
+#include "fracbench/gap_bench.hpp"
 
 namespace py = pybind11;
 using namespace fracdesign;
@@ -26,9 +26,9 @@ nlohmann::json out(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlo
 std::string score(const std::string& cases_text)
 {
     const nlohmann::json cases = nlohmann::json::parse(cases_text);
-    std::vector<gap::CaseOutcome> v;
+    std::vector<fracbench::CaseOutcome> v;
     for (const auto& c : cases) {
-        gap::CaseOutcome o;
+        fracbench::CaseOutcome o;
         for (const auto& t : c.at("truth")) {
             gap::TruthEffect te;
             te.effect = t.at("effect").get<std::string>();
@@ -45,7 +45,7 @@ std::string score(const std::string& cases_text)
         o.shrink = num(c.at("shrink"));
         v.push_back(o);
     }
-    const gap::BenchScore S = gap::score_bench(v);
+    const fracbench::BenchScore S = fracbench::score_bench(v);
     nlohmann::json conf = nlohmann::json::array();
     for (const auto& row : S.confusion) conf.push_back(row);
     const nlohmann::json j = {{"score",
@@ -64,4 +64,4 @@ std::string score(const std::string& cases_text)
 
 }  // namespace
 
-void bind_bench(py::module_& m) { m.def("bench_score", &score, "gap::score_bench over gap-bench case entries."); }
+void bind_bench(py::module_& m) { m.def("bench_score", &score, "fracbench::score_bench over gap-bench case entries."); }

@@ -8,6 +8,7 @@ SRC = os.environ["FRAC_SOURCE_DIR"]
 BIN = os.environ["FRAC_BINARY_DIR"]
 FRACDESIGN = os.path.join(BIN, "design_tools", "fracdesign")
 HIL_BENCH = os.path.join(BIN, "hil", "hil_bench")
+GAP_BENCH = os.path.join(BIN, "bench", "gap-bench")
 CDRIVER = os.environ["FRACARM_CDRIVER"]
 
 

@@ -17,7 +17,7 @@ import pyarrow.parquet as pq
 import pytest
 
 import hil_records
-from conftest import FRACDESIGN, HIL_BENCH, SRC, cli
+from conftest import FRACDESIGN, GAP_BENCH, HIL_BENCH, SRC, cli
 from fracarm import fleet, gap
 from fracarm.errors import UsageError
 
@@ -184,7 +184,9 @@ def test_parquet_manifest_and_cli(records, tmp_path):
 
 def test_sharded_gap_bench_equals_the_single_machine_bench(cluster):
     cases, seed = 4, 11
-    st, outp, err = cli("gap-bench", "--cases", cases, "--seed", seed, "--duration", "1.0", "--json")
+    p = subprocess.run([GAP_BENCH, "--cases", str(cases), "--seed", str(seed), "--duration", "1.0", "--json"],
+                       capture_output=True, text=True)
+    st, outp, err = p.returncode, p.stdout, p.stderr
     assert st == 0, err
     single = json.loads(outp)
     sharded = fleet.bench(cases, seed, duration=1.0, client=cluster)

@@ -16,7 +16,7 @@ that dies mid-run has its tasks rescheduled on the others (Dask's
 ``distributed.scheduler.allowed-failures`` bounds how often one task may
 take a worker down) and the table is still complete.
 
-:func:`bench` shards ``fracdesign gap-bench`` across the cluster, one task
+:func:`bench` shards ``gap-bench`` across the cluster, one task
 per case (``gap-bench --replay ID``, the bench's one-case entry: a case
 depends only on the seed, its id, the duration and the noise), and scores
 the gathered cases with the bench's own scoring, so its cases and scores are
@@ -45,6 +45,13 @@ def _fracdesign() -> str:
     from .. import _build_paths
 
     return os.environ.get("FRACARM_FRACDESIGN") or _build_paths.FRACDESIGN
+
+
+def _gap_bench() -> str:
+    """The gap-bench executable (bench/): $FRACARM_GAP_BENCH, else this build's."""
+    from .. import _build_paths
+
+    return os.environ.get("FRACARM_GAP_BENCH") or _build_paths.GAP_BENCH
 
 
 def read_manifest(path: str | os.PathLike):
@@ -204,8 +211,8 @@ def write_table(table, path: str) -> None:
 
 
 def bench_case(case_id: int, cases: int, seed: int, duration: float, noise: float) -> Dict[str, Any]:
-    """One gap-bench case: ``fracdesign gap-bench --replay case_id --json``'s case entry."""
-    cmd = [_fracdesign(), "gap-bench", "--cases", str(cases), "--seed", str(seed), "--duration", repr(float(duration)),
+    """One gap-bench case: ``gap-bench --replay case_id --json``'s case entry."""
+    cmd = [_gap_bench(), "--cases", str(cases), "--seed", str(seed), "--duration", repr(float(duration)),
            "--noise", repr(float(noise)), "--replay", str(case_id), "--json"]
     p = subprocess.run(cmd, capture_output=True, text=True)
     if p.returncode not in (0, 1):
@@ -221,7 +228,7 @@ def bench(cases: int = 28, seed: int = 1, duration: float = 2.4, noise: float = 
           scheduler: Optional[str] = None, workers: int = 2) -> Dict[str, Any]:
     """gap-bench sharded over the cluster, one task per case.
 
-    Returns the bench document as ``fracdesign gap-bench --json`` has it
+    Returns the bench document as ``gap-bench --json`` has it
     (schema, seed, cases, score, confusion, goals; "replay" -1).
     """
     if not 1 <= int(cases) <= 100000:

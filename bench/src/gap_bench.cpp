@@ -1,7 +1,7 @@
-// bench.cpp - gap-bench: the diagnosis against hidden truth on the HIL rig
-// (bench.hpp; docs/gap.md "gap-bench" gives the set-up and the mapping of each
+// gap_bench.cpp - gap-bench: the diagnosis against hidden truth on the HIL rig
+// (gap_bench.hpp; docs/gap.md "gap-bench" gives the set-up and the mapping of each
 // injected effect to the parameter the diagnosis reports).
-#include "fracdesign/gap/bench.hpp"
+#include "fracbench/gap_bench.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -15,6 +15,7 @@
 #include <stdexcept>
 #include <unsupported/Eigen/MatrixFunctions>
 
+#include "fracbench/families.hpp"
 #include "fracdesign/io/signal_csv.hpp"
 
 extern "C" {
@@ -22,8 +23,10 @@ extern "C" {
 #include "hil/rng.h"
 }
 
-namespace fracdesign {
-namespace gap {
+namespace fracbench {
+
+using namespace fracdesign::gap;
+namespace io = fracdesign::io;
 
 namespace {
 
@@ -310,6 +313,7 @@ BenchScore score_bench(const std::vector<CaseOutcome>& cases)
         throw std::invalid_argument("gap-bench: unknown effect '" + n + "'");
     };
     std::vector<double> perr, shrinks;
+    std::map<std::string, std::vector<double>> label_perr;
     for (const CaseOutcome& c : cases) {
         CaseScore cs;
         cs.param_error = kNaN;
@@ -347,10 +351,17 @@ BenchScore score_bench(const std::vector<CaseOutcome>& cases)
                 cs.param_error = n > 0 ? sum / n : kNaN;
                 // A parameter the diagnosis could not report counts as a miss (100 %).
                 perr.push_back(std::isfinite(cs.param_error) ? cs.param_error : 1.0);
+                if (c.truth.size() == 1) label_perr[cs.truth_label].push_back(perr.back());
             }
+        }
+        if (c.truth.size() <= 1) {
+            LabelScore& ls = S.per_label[cs.truth_label];
+            ls.cases += 1;
+            ls.correct += cs.correct;
         }
         S.per_case.push_back(cs);
     }
+    for (auto& kv : S.per_label) kv.second.median_param_error = median(label_perr[kv.first]);
     S.accuracy = S.cases ? double(S.correct) / S.cases : kNaN;
     S.median_param_error = median(perr);
     S.param_cases = int(perr.size());
@@ -359,32 +370,47 @@ BenchScore score_bench(const std::vector<CaseOutcome>& cases)
     return S;
 }
 
-BenchCase draw_case(const BenchOptions& opt, int id, double cmd_peak)
+std::string drawn_label(const std::vector<std::string>& labels, std::uint64_t seed, int id)
 {
-    // Effects are drawn in shuffled rounds of all 14 labels (every label
-    // equally often over 14 cases), sizes from the case's own generator.
-    const std::vector<std::string> labels = bench_labels();
+    // Shuffled rounds of all labels (every label equally often over
+    // labels.size() consecutive cases).
     const int L = int(labels.size()), round = id / L;
     hil_rng perm;
-    hil_rng_seed(&perm, splitmix(opt.seed * 1000003ull + std::uint64_t(round)));
+    hil_rng_seed(&perm, splitmix(seed * 1000003ull + std::uint64_t(round)));
     std::vector<int> order(static_cast<size_t>(L));
     for (int i = 0; i < L; ++i) order[size_t(i)] = i;
     for (int i = L - 1; i > 0; --i) std::swap(order[size_t(i)], order[size_t(hil_rng_u64(&perm) % std::uint64_t(i + 1))]);
+    return labels[size_t(order[size_t(id % L)])];
+}
+
+std::uint64_t case_seed(std::uint64_t seed, int id) { return splitmix(seed ^ splitmix(std::uint64_t(id) + 1)); }
+
+std::string second_label(const std::vector<std::string>& labels, const std::string& first, hil_rng* rng)
+{
+    // labels ends with "none", which is never a second effect; no two friction models.
+    std::string second;
+    do {
+        second = labels[size_t(hil_rng_u64(rng) % std::uint64_t(labels.size() - 1))];
+    } while (second == first || (friction_family(first) && friction_family(second)));
+    return second;
+}
+
+BenchCase draw_case(const BenchOptions& opt, int id, double cmd_peak)
+{
+    // Effects are drawn in shuffled rounds of all 14 labels, sizes from the
+    // case's own generator.
+    const std::vector<std::string> labels = bench_labels();
     BenchCase c;
     c.id = id;
-    c.seed = splitmix(opt.seed ^ splitmix(std::uint64_t(id) + 1));
+    c.family = "twomass";
+    c.seed = case_seed(opt.seed, id);
     hil_rng rng;
     hil_rng_seed(&rng, c.seed);
-    const std::string first = labels[size_t(order[size_t(id % L)])];
+    const std::string first = drawn_label(labels, opt.seed, id);
     if (first != "none") {
         c.truth.push_back(draw_effect(first, &rng, cmd_peak));
-        if (hil_rng_uniform(&rng) < opt.two_effect_prob) {
-            std::string second;
-            do {
-                second = labels[size_t(hil_rng_u64(&rng) % std::uint64_t(L - 1))];
-            } while (second == first || (friction_family(first) && friction_family(second)));
-            c.truth.push_back(draw_effect(second, &rng, cmd_peak));
-        }
+        if (hil_rng_uniform(&rng) < opt.two_effect_prob)
+            c.truth.push_back(draw_effect(second_label(labels, first, &rng), &rng, cmd_peak));
     }
     hil_rig_config cfg = base_config(opt, c.seed);
     for (const TruthEffect& t : c.truth)
@@ -474,6 +500,17 @@ nlohmann::json bench_nominal_doc()
 
 double bench_cmd_peak(const BenchOptions& opt) { return run_rig(base_config(opt, splitmix(opt.seed))).cmd_peak; }
 
+Family twomass_family()
+{
+    Family f;
+    f.name = "twomass";
+    f.summary = "seed 004 two-mass drive on the lockstep HIL rig, the bench's PD loop, 4-cycle drive delay";
+    f.labels = bench_labels();
+    f.draw = [](const BenchOptions& opt, int id) { return draw_case(opt, id, bench_cmd_peak(opt)); };
+    f.run = run_case;
+    return f;
+}
+
 CaseRun run_case(const BenchOptions& opt, const BenchCase& c)
 {
     CaseRun out;
@@ -483,12 +520,18 @@ CaseRun run_case(const BenchOptions& opt, const BenchCase& c)
         for (const auto& kv : t.rig) set_key(&cfg, kv.first, kv.second);
     out.data = run_rig(cfg).data;
     out.nominal = bench_nominal_doc();
+    diagnose_case(opt, {"motor_velocity", "imu_rate"}, out);
+    return out;
+}
+
+void diagnose_case(const BenchOptions& opt, const std::vector<std::string>& outputs, CaseRun& out)
+{
     const NominalModel m = nominal_from_json(out.nominal, out.data.Ts);
     GapOptions g;
-    g.outputs = {"motor_velocity", "imu_rate"};
+    g.outputs = outputs;
     g.max_iterations = opt.max_iterations;
     out.result = diagnose(m, out.data, nullptr, g);
-    out.outcome.truth = c.truth;
+    out.outcome.truth = out.draw.truth;
     out.outcome.shrink = out.result.verdict.shrink;
     for (const EffectInstance& e : out.result.verdict.effects) {
         out.outcome.verdict.push_back(effect_name(e.kind));
@@ -497,8 +540,11 @@ CaseRun run_case(const BenchOptions& opt, const BenchCase& c)
         for (size_t i = 0; i < pn.size() && i < e.params.size(); ++i) p[pn[i]] = e.params[i];
         out.outcome.verdict_params.push_back(p);
     }
-    return out;
 }
+
+std::string format_value(double x) { return fmt(x); }
+
+std::string scenario_line(const std::string& key, double value) { return key + " = " + fmt(value) + "\n"; }
 
 namespace {
 
@@ -512,8 +558,10 @@ void write_case_files(const std::filesystem::path& dir, const CaseRun& r)
         o.close();
         if (!o) throw std::runtime_error("gap-bench: cannot write " + (dir / name).string());
     };
-    put("scenario.txt", "# gap-bench case " + std::to_string(r.draw.id) + ": rig configuration (the controller is "
-                        "gap-bench's PD law, not a scenario key)\n" + r.draw.scenario);
+    put("scenario.txt", "# gap-bench family " + r.draw.family + " case " + std::to_string(r.draw.id) +
+                            (r.draw.family == "twomass" ? ": rig configuration (the controller is gap-bench's PD law, not a scenario key)\n"
+                                                        : ": plant, controller and injection of the bench's simulator\n") +
+                            r.draw.scenario);
     put("nominal.json", r.nominal.dump(1) + "\n");
     put("truth.json", truth_json(r.draw.truth).dump(2) + "\n");
     nlohmann::json res = result_json(r.result);
@@ -535,13 +583,13 @@ nlohmann::json run_bench(const BenchOptions& opt, std::ostream* progress)
     if (!(opt.duration >= 0.5 && opt.duration <= 60)) throw std::invalid_argument("gap-bench: --duration must be in [0.5, 60] s");
     if (!(opt.gyro_noise >= 0 && std::isfinite(opt.gyro_noise))) throw std::invalid_argument("gap-bench: --noise must be >= 0");
     if (opt.only_case >= opt.cases) throw std::invalid_argument("gap-bench: --replay names a case beyond --cases");
-    const double peak = bench_cmd_peak(opt);
+    const Family& fam = family(opt.family);
     std::vector<CaseOutcome> outcomes;
     nlohmann::json cases = nlohmann::json::array();
     for (int id = 0; id < opt.cases; ++id) {
         if (opt.only_case >= 0 && id != opt.only_case) continue;
-        const BenchCase c = draw_case(opt, id, peak);
-        const CaseRun r = run_case(opt, c);
+        const BenchCase c = fam.draw(opt, id);
+        const CaseRun r = fam.run(opt, c);
         outcomes.push_back(r.outcome);
         if (!opt.out_dir.empty()) {
             char name[32];
@@ -554,8 +602,12 @@ nlohmann::json run_bench(const BenchOptions& opt, std::ostream* progress)
             for (const auto& kv : r.outcome.verdict_params[i]) p[kv.first] = num(kv.second);
             vp.push_back({{"effect", r.outcome.verdict[i]}, {"params", p}});
         }
+        nlohmann::json plant = nlohmann::json::object();
+        for (const auto& kv : c.plant) plant[kv.first] = kv.second;
         nlohmann::json cj = {{"id", id},
+                             {"family", c.family},
                              {"seed", c.seed},
+                             {"plant", plant},
                              {"truth", truth_json(c.truth)},
                              {"verdict", vp},
                              {"shrink", num(r.outcome.shrink)},
@@ -600,15 +652,22 @@ nlohmann::json run_bench(const BenchOptions& opt, std::ostream* progress)
     const BenchScore S = score_bench(outcomes);
     nlohmann::json conf = nlohmann::json::array();
     for (const auto& row : S.confusion) conf.push_back(row);
-    return {{"schema", "frac.gap_bench"},
-            {"version", 1},
+    nlohmann::json per_effect = nlohmann::json::object();
+    for (const auto& kv : S.per_label)
+        per_effect[kv.first] = {{"cases", kv.second.cases},
+                                {"correct", kv.second.correct},
+                                {"accuracy", num(double(kv.second.correct) / kv.second.cases)},
+                                {"median_param_error", num(kv.second.median_param_error)}};
+    nlohmann::json out = {{"schema", "frac.gap_bench"},
+            {"version", 2},
+            {"family", fam.name},
+            {"family_summary", fam.summary},
             {"seed", opt.seed},
             {"cases_requested", opt.cases},
             {"replay", opt.only_case},
             {"duration_s", opt.duration},
             {"gyro_noise", opt.gyro_noise},
             {"two_effect_prob", opt.two_effect_prob},
-            {"cmd_peak_nominal", peak},
             {"cases", cases},
             {"score",
              {{"cases", S.cases},
@@ -621,6 +680,7 @@ nlohmann::json run_bench(const BenchOptions& opt, std::ostream* progress)
               {"median_shrink_found", num(S.median_shrink_found)},
               {"found_cases", S.found_cases}}},
             {"confusion", {{"labels", S.labels}, {"rows_truth_cols_top1", conf}}},
+            {"per_effect", per_effect},
             {"goals",
              {{"accuracy_min", 0.9},
               {"median_param_error_max", 0.1},
@@ -628,7 +688,8 @@ nlohmann::json run_bench(const BenchOptions& opt, std::ostream* progress)
               {"accuracy_met", S.accuracy >= 0.9},
               {"param_error_met", S.median_param_error <= 0.1},
               {"shrink_met", S.median_shrink_found >= 0.8}}}};
+    if (fam.name == "twomass") out["cmd_peak_nominal"] = bench_cmd_peak(opt);
+    return out;
 }
 
-}  // namespace gap
-}  // namespace fracdesign
+}  // namespace fracbench

@@ -1,4 +1,4 @@
-// test_gap_bench.cpp - gap-bench (src/gap/bench.cpp): the scoring on
+// test_gap_bench.cpp - gap-bench (bench/src/gap_bench.cpp): the scoring on
 // synthetic answers (accuracy, confusion matrix, parameter error, shrink),
 // the case draw (deterministic, every label equally often, the rig keys in
 // the scenario), the bench nominal against the effect-free rig, a small
@@ -16,8 +16,11 @@
 #include <set>
 #include <sstream>
 
-#include "fracdesign/gap/bench.hpp"
+#include "fracbench/families.hpp"
+#include "fracbench/gap_bench.hpp"
+#include "fracbench/visibility.hpp"
 
+using namespace fracbench;
 using namespace fracdesign::gap;
 
 namespace {
@@ -215,8 +218,8 @@ TEST(GapBenchCli, usage_errors_exit_2_with_one_line)
 {
     namespace fs = std::filesystem;
     const fs::path err = fs::temp_directory_path() / ("gap_bench_err_" + std::to_string(::getpid()) + ".txt");
-    for (const std::string args : {"--cases 0", "--cases 3 --replay 3", "--seed -1", "--duration 0.1", "--bogus 1"}) {
-        const std::string cmd = std::string(FRACDESIGN_EXE) + " gap-bench " + args + " > /dev/null 2> " + err.string();
+    for (const std::string args : {"--cases 0", "--cases 3 --replay 3", "--seed -1", "--duration 0.1", "--bogus 1", "--family wobble"}) {
+        const std::string cmd = std::string(GAP_BENCH_EXE) + " " + args + " > /dev/null 2> " + err.string();
         const int rc = std::system(cmd.c_str());
         ASSERT_TRUE(WIFEXITED(rc)) << args;
         EXPECT_EQ(WEXITSTATUS(rc), 2) << args;
@@ -258,12 +261,120 @@ TEST(GapBenchRun, gear_damping_is_found_in_the_gear)
 // default 60 cases with it).
 TEST(GapBenchCli, require_goals_exits_1_when_a_goal_is_missed)
 {
-    const std::string base = std::string(FRACDESIGN_EXE) + " gap-bench --cases 3 --seed 1 --duration 1.2 --require-goals";
+    const std::string base = std::string(GAP_BENCH_EXE) + " --cases 3 --seed 1 --duration 1.2 --require-goals";
     int rc = std::system((base + " --noise 2 > /dev/null").c_str());
     ASSERT_TRUE(WIFEXITED(rc));
     EXPECT_EQ(WEXITSTATUS(rc), 1);
     rc = std::system((base + " --json --noise 2 > /dev/null").c_str());
     EXPECT_EQ(WEXITSTATUS(rc), 1);
-    rc = std::system((std::string(FRACDESIGN_EXE) + " gap-bench --cases 3 --seed 1 --duration 1.2 --noise 2 > /dev/null").c_str());
+    rc = std::system((std::string(GAP_BENCH_EXE) + " --cases 3 --seed 1 --duration 1.2 --noise 2 > /dev/null").c_str());
     EXPECT_EQ(WEXITSTATUS(rc), 0);
+}
+
+// ---- the simulated families (issue 17 item 7) ------------------------------
+
+namespace {
+
+std::vector<std::string> family_outputs(const std::string& f)
+{
+    return f == "servo" ? std::vector<std::string>{"position", "velocity"} : std::vector<std::string>{"y"};
+}
+
+}  // namespace
+
+// Each family draws every one of its labels once per round, a new plant per
+// case, deterministically, and maps each injected effect to parameters the
+// diagnosis reports for that effect on the family's outputs.
+TEST(GapBenchFamilies, draw_every_label_per_round_a_new_plant_per_case_and_diagnosis_parameters)
+{
+    for (const std::string name : {"servo", "foprocess"}) {
+        const Family& f = family(name);
+        BenchOptions opt;
+        opt.family = name;
+        opt.seed = 11;
+        std::set<std::string> first;
+        std::set<double> first_param;
+        const int L = int(f.labels.size());
+        for (int id = 0; id < L; ++id) {
+            const BenchCase a = f.draw(opt, id);
+            EXPECT_EQ(a.family, name);
+            ASSERT_FALSE(a.plant.empty());
+            first_param.insert(a.plant.begin()->second);
+            first.insert(a.truth.empty() ? "none" : a.truth[0].effect);
+            for (const TruthEffect& t : a.truth) {
+                EXPECT_FALSE(t.rig.empty()) << name << " " << t.effect;
+                ASSERT_FALSE(t.params.empty()) << name << " " << t.effect;
+                const std::vector<std::string> pn = param_names(effect_from_name(t.effect), family_outputs(name));
+                for (const TruthParam& p : t.params)
+                    EXPECT_NE(std::find(pn.begin(), pn.end(), p.name), pn.end()) << name << " " << t.effect << " " << p.name;
+                for (const auto& kv : t.rig) EXPECT_NE(a.scenario.find(kv.first + " = " + kv.second), std::string::npos);
+            }
+        }
+        EXPECT_EQ(int(first.size()), L) << name;
+        EXPECT_EQ(int(first_param.size()), L) << name << ": the plant must change from case to case";
+        const BenchCase x = f.draw(opt, 3), y = f.draw(opt, 3);
+        EXPECT_EQ(x.scenario, y.scenario);
+        EXPECT_EQ(x.plant, y.plant);
+    }
+}
+
+// The nominal document of each family replays its effect-free record to the
+// sensor noise: without the effect, the gap is the noise (0.3 % of the
+// signal's std, servo position 0.02 % of its tone), and the verdict is none.
+TEST(GapBenchFamilies, the_nominal_replays_the_effect_free_record_to_the_noise)
+{
+    for (const std::string name : {"servo", "foprocess"}) {
+        const Family& f = family(name);
+        BenchOptions opt;
+        opt.family = name;
+        opt.seed = 4;
+        BenchCase c = f.draw(opt, 0);
+        c.truth.clear();
+        const CaseRun r = f.run(opt, c);
+        EXPECT_LT(r.result.gap_before_total, 0.02) << name;
+        EXPECT_TRUE(r.outcome.verdict.empty()) << name << ": " << r.outcome.verdict.front();
+    }
+}
+
+// An injection shows in the record that the family's run produces (the run
+// reads the injection from the case's truth keys, so an edited case runs as
+// edited).
+TEST(GapBenchFamilies, the_run_injects_what_the_truth_keys_say)
+{
+    const Family& f = family("foprocess");
+    BenchOptions opt;
+    opt.family = "foprocess";
+    opt.seed = 2;
+    BenchCase c = f.draw(opt, 0);
+    c.truth = {{"gain_error", {{"input.gain", "1.3"}}, {{"gain", 1.3}}}};
+    const CaseRun r = f.run(opt, c);
+    ASSERT_FALSE(r.outcome.verdict.empty());
+    EXPECT_EQ(r.outcome.verdict[0], "gain_error");
+    EXPECT_NEAR(r.outcome.verdict_params[0].at("gain"), 1.3, 0.05);
+    c.truth = {{"gain_error", {{"input.wobble", "1.3"}}, {{"gain", 1.3}}}};
+    EXPECT_THROW(f.run(opt, c), std::invalid_argument);
+}
+
+TEST(GapBenchFamilies, an_unknown_family_is_refused_naming_the_allowed_ones)
+{
+    try {
+        family("wobble");
+        FAIL() << "no throw";
+    } catch (const std::invalid_argument& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("wobble"), std::string::npos) << m;
+        for (const char* n : {"twomass", "servo", "foprocess"}) EXPECT_NE(m.find(n), std::string::npos) << m;
+    }
+}
+
+TEST(GapBenchVisibility, is_the_largest_rms_change_in_noise_stds_and_refuses_bad_shapes)
+{
+    Eigen::MatrixXd a = Eigen::MatrixXd::Zero(4, 2), b = Eigen::MatrixXd::Zero(4, 2);
+    b.col(0).setConstant(0.3);
+    b.col(1) << 1, -1, 1, -1;
+    EXPECT_NEAR(visibility(b, a, {0.1, 0.5}), 3.0, 1e-12);
+    EXPECT_NEAR(visibility(b, a, {0.1, 0.01}), 100.0, 1e-12);
+    EXPECT_THROW(visibility(b, a, {0.1}), std::invalid_argument);
+    EXPECT_THROW(visibility(b, Eigen::MatrixXd::Zero(3, 2), {0.1, 0.1}), std::invalid_argument);
+    EXPECT_THROW(visibility(b, a, {0.1, 0.0}), std::invalid_argument);
 }

@@ -1,0 +1,22 @@
+// visibility.hpp - the visibility rule of the simulated families (docs/gap.md
+// "gap-bench", "Visibility"): an injected effect must change at least one
+// compared output by at least kVisibleNoiseMultiple times that output's
+// noise std (rms over the record, both runs noise-free, same reference); a
+// draw that does not is redrawn, up to kVisibleDraws times, then refused
+// (std::runtime_error naming the family and effect: a size range that
+// cannot be seen is a defect of the family, not a case to score).
+#pragma once
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+namespace fracbench {
+
+constexpr double kVisibleNoiseMultiple = 5.0;
+constexpr int kVisibleDraws = 20;
+
+// rms over samples of (with - without) per column, divided by noise_std per
+// column; returns the largest ratio.
+double visibility(const Eigen::MatrixXd& with, const Eigen::MatrixXd& without, const std::vector<double>& noise_std);
+
+}  // namespace fracbench
