@@ -577,6 +577,59 @@ void write_case_files(const std::filesystem::path& dir, const CaseRun& r)
 
 }  // namespace
 
+nlohmann::json score_json(const BenchScore& S)
+{
+    nlohmann::json conf = nlohmann::json::array();
+    for (const auto& row : S.confusion) conf.push_back(row);
+    nlohmann::json per_effect = nlohmann::json::object();
+    for (const auto& kv : S.per_label)
+        per_effect[kv.first] = {{"cases", kv.second.cases},
+                                {"correct", kv.second.correct},
+                                {"accuracy", num(double(kv.second.correct) / kv.second.cases)},
+                                {"median_param_error", num(kv.second.median_param_error)}};
+    return {{"score",
+             {{"cases", S.cases},
+              {"correct", S.correct},
+              {"accuracy", num(S.accuracy)},
+              {"two_effect_cases", S.two_effect_cases},
+              {"two_effect_correct", S.two_effect_correct},
+              {"median_param_error", num(S.median_param_error)},
+              {"param_cases", S.param_cases},
+              {"median_shrink_found", num(S.median_shrink_found)},
+              {"found_cases", S.found_cases}}},
+            {"confusion", {{"labels", S.labels}, {"rows_truth_cols_top1", conf}}},
+            {"per_effect", per_effect},
+            {"goals",
+             {{"accuracy_min", 0.9},
+              {"median_param_error_max", 0.1},
+              {"median_shrink_found_min", 0.8},
+              {"accuracy_met", S.accuracy >= 0.9},
+              {"param_error_met", S.median_param_error <= 0.1},
+              {"shrink_met", S.median_shrink_found >= 0.8}}}};
+}
+
+CaseOutcome outcome_from_json(const nlohmann::json& c)
+{
+    // null stands for a non-finite number in the document (num above)
+    const auto val = [](const nlohmann::json& x) { return x.is_null() ? kNaN : x.get<double>(); };
+    CaseOutcome o;
+    for (const auto& t : c.at("truth")) {
+        TruthEffect te;
+        te.effect = t.at("effect").get<std::string>();
+        for (auto it = t.at("params").begin(); it != t.at("params").end(); ++it)
+            te.params.push_back({it.key(), val(it.value())});
+        o.truth.push_back(te);
+    }
+    for (const auto& e : c.at("verdict")) {
+        o.verdict.push_back(e.at("effect").get<std::string>());
+        std::map<std::string, double> p;
+        for (auto it = e.at("params").begin(); it != e.at("params").end(); ++it) p[it.key()] = val(it.value());
+        o.verdict_params.push_back(p);
+    }
+    o.shrink = val(c.at("shrink"));
+    return o;
+}
+
 nlohmann::json run_bench(const BenchOptions& opt, std::ostream* progress)
 {
     if (opt.cases < 1) throw std::invalid_argument("gap-bench: --cases must be >= 1");
@@ -649,15 +702,6 @@ nlohmann::json run_bench(const BenchOptions& opt, std::ostream* progress)
             *progress << std::flush;
         }
     }
-    const BenchScore S = score_bench(outcomes);
-    nlohmann::json conf = nlohmann::json::array();
-    for (const auto& row : S.confusion) conf.push_back(row);
-    nlohmann::json per_effect = nlohmann::json::object();
-    for (const auto& kv : S.per_label)
-        per_effect[kv.first] = {{"cases", kv.second.cases},
-                                {"correct", kv.second.correct},
-                                {"accuracy", num(double(kv.second.correct) / kv.second.cases)},
-                                {"median_param_error", num(kv.second.median_param_error)}};
     nlohmann::json out = {{"schema", "frac.gap_bench"},
             {"version", 2},
             {"family", fam.name},
@@ -668,26 +712,8 @@ nlohmann::json run_bench(const BenchOptions& opt, std::ostream* progress)
             {"duration_s", opt.duration},
             {"gyro_noise", opt.gyro_noise},
             {"two_effect_prob", opt.two_effect_prob},
-            {"cases", cases},
-            {"score",
-             {{"cases", S.cases},
-              {"correct", S.correct},
-              {"accuracy", num(S.accuracy)},
-              {"two_effect_cases", S.two_effect_cases},
-              {"two_effect_correct", S.two_effect_correct},
-              {"median_param_error", num(S.median_param_error)},
-              {"param_cases", S.param_cases},
-              {"median_shrink_found", num(S.median_shrink_found)},
-              {"found_cases", S.found_cases}}},
-            {"confusion", {{"labels", S.labels}, {"rows_truth_cols_top1", conf}}},
-            {"per_effect", per_effect},
-            {"goals",
-             {{"accuracy_min", 0.9},
-              {"median_param_error_max", 0.1},
-              {"median_shrink_found_min", 0.8},
-              {"accuracy_met", S.accuracy >= 0.9},
-              {"param_error_met", S.median_param_error <= 0.1},
-              {"shrink_met", S.median_shrink_found >= 0.8}}}};
+            {"cases", cases}};
+    out.update(score_json(score_bench(outcomes)));
     if (fam.name == "twomass") out["cmd_peak_nominal"] = bench_cmd_peak(opt);
     return out;
 }

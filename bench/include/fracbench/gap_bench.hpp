@@ -91,6 +91,12 @@ struct BenchScore {
 std::vector<std::string> bench_labels();
 // Scores the outcomes (pure: the unit tests feed it synthetic answers).
 BenchScore score_bench(const std::vector<CaseOutcome>& cases);
+// The "score", "confusion", "per_effect" and "goals" sections of the bench
+// document for S (run_bench's, and a sharded bench's: python/src/bind_bench.cpp).
+nlohmann::json score_json(const BenchScore& S);
+// The scoring's view of one case entry of the bench document ("truth",
+// "verdict", "shrink"; null numbers read as NaN).
+CaseOutcome outcome_from_json(const nlohmann::json& case_entry);
 
 struct BenchOptions {
     std::string family = "twomass";  // families.hpp: family_names()

@@ -219,8 +219,8 @@ def bench_case(case_id: int, cases: int, seed: int, duration: float, noise: floa
         raise FracarmError(p.stderr.strip() or "%s: exit status %d" % (" ".join(cmd), p.returncode))
     j = json.loads(p.stdout)
     (case,) = j["cases"]
-    case["_bench"] = {k: j[k] for k in ("schema", "version", "seed", "cases_requested", "duration_s", "gyro_noise",
-                                        "two_effect_prob", "cmd_peak_nominal")}
+    case["_bench"] = {k: v for k, v in j.items()
+                      if k not in ("cases", "replay", "score", "confusion", "per_effect", "goals")}
     return case
 
 
@@ -249,12 +249,6 @@ def bench(cases: int = 28, seed: int = 1, duration: float = 2.4, noise: float = 
     for g in got:
         del g["_bench"]
     scored = json.loads(_fracarm.bench_score(json.dumps(got)))
-    s = scored["score"]
-    ok = lambda x, f: x is not None and f(x)
     doc = dict(head)
-    doc.update(replay=-1, cases=got, score=s, confusion=scored["confusion"],
-               goals={"accuracy_min": 0.9, "median_param_error_max": 0.1, "median_shrink_found_min": 0.8,
-                      "accuracy_met": ok(s["accuracy"], lambda a: a >= 0.9),
-                      "param_error_met": ok(s["median_param_error"], lambda a: a <= 0.1),
-                      "shrink_met": ok(s["median_shrink_found"], lambda a: a >= 0.8)})
+    doc.update(replay=-1, cases=got, **scored)
     return doc
