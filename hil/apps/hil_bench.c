@@ -71,7 +71,7 @@ static int run_lockstep(const struct app_opts *o, const char *dir)
     boot_wall = app_now() - t0;
     if (st != HIL_OK || app_setup_law(&rig.ctrl, &o->cfg) != 0) {
         if (st == HIL_E_STATE)
-            fprintf(stderr, "hil_bench: the controller could not boot the devices: %s\n", rig.ctrl.boot_error);
+            fprintf(stderr, "hil_bench: %s\n", rig.err);
         else if (st != HIL_OK)
             fprintf(stderr, "hil_bench: the scenario is refused: %s\n", rig.err);
         fclose(log);

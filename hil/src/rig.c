@@ -346,8 +346,12 @@ int hil_rig_init(struct hil_rig *r, const struct hil_rig_config *c, FILE *log, F
      * the numbering */
     out.n = 0;
     hil_ctrl_boot(&r->ctrl, &out);
-    if (enqueue(r, &out, FROM_CTRL) != HIL_OK || drain(r) != HIL_OK || r->ctrl.boot_status != 1)
-        return HIL_E_STATE;
+    if (enqueue(r, &out, FROM_CTRL) != HIL_OK || drain(r) != HIL_OK || r->ctrl.boot_status != 1) {
+        char msg[sizeof r->err];
+        snprintf(msg, sizeof msg, "the controller could not boot the devices by SDO: %s",
+                 r->ctrl.boot_error[0] ? r->ctrl.boot_error : "the boot's frames did not all reach the bus");
+        return rig_fail(r, HIL_E_STATE, msg);
+    }
     r->booted_slots = r->slot;
     r->st.boot_frames = r->st.frames_delivered;
     if (csv)

@@ -288,6 +288,19 @@ static void test_log_bound_stops_the_run_with_a_reason(void **state)
     assert_int_equal(hil_rig_config_set(&c, "duration", "600"), HIL_OK);
 }
 
+/* Found by fuzz_scenario: a bus-off over t = 0 loses the SDO boot's frames;
+ * the rig refuses to start and says why (it returned without a reason). */
+static void test_boot_lost_to_bus_off_is_refused_with_a_reason(void **state)
+{
+    struct hil_rig_config c;
+    (void)state;
+    hil_rig_config_default(&c);
+    c.drive_busoff_start = 0.0;
+    c.drive_busoff_end = 0.2;
+    assert_int_equal(hil_rig_init(&rig, &c, NULL, NULL), HIL_E_STATE);
+    assert_non_null(strstr(rig.err, "the controller could not boot the devices by SDO: "));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -300,6 +313,7 @@ int main(void)
         cmocka_unit_test(test_scenario_file_sets_keys_and_reports_bad_lines),
         cmocka_unit_test(test_metadata_records_scenario_seeds_and_counts),
         cmocka_unit_test(test_log_bound_stops_the_run_with_a_reason),
+        cmocka_unit_test(test_boot_lost_to_bus_off_is_refused_with_a_reason),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

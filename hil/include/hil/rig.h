@@ -104,7 +104,8 @@ int hil_rig_config_set(struct hil_rig_config *c, const char *key, const char *va
 /* Initialises every node and boots the devices by SDO (hil_ctrl_boot; its
  * frames go to the log); log and csv may be NULL. The CSV header is written
  * here. Returns HIL_OK, HIL_E_ARG (a parameter failed validation; r->err says
- * which) or HIL_E_STATE (the boot failed: r->ctrl.boot_error says why). */
+ * which) or HIL_E_STATE (the boot failed: r->err says why, from
+ * r->ctrl.boot_error). */
 int hil_rig_init(struct hil_rig *r, const struct hil_rig_config *c, FILE *log, FILE *csv);
 /* Runs one controller cycle. HIL_OK, or HIL_E_FULL if the bus queue
  * overflowed or the log reached HIL_RIG_LOG_MAX (r->err says which). */
