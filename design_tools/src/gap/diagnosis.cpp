@@ -12,6 +12,8 @@
 #include <stdexcept>
 #include <unsupported/Eigen/FFT>
 
+#include "fracdesign/welch.hpp"
+
 namespace fracdesign {
 namespace gap {
 
@@ -105,17 +107,19 @@ std::vector<std::vector<double>> band_nrmse(const Eigen::MatrixXd& y, const Eige
 }
 
 // Smoothed periodogram (5-bin moving average) of one signal, one-sided, on
-// the zero-padded length fft_length(x.size()).
+// the zero-padded length fft_length(x.size()): the project's spectrum
+// estimator (welch_psd) with one rectangular segment of the whole record.
 std::vector<double> smoothed_spectrum(const Eigen::VectorXd& x)
 {
-    Eigen::FFT<double> fft;
-    std::vector<double> in(x.data(), x.data() + x.size());
-    in.resize(size_t(fft_length(x.size())), 0.0);
-    std::vector<std::complex<double>> X;
-    fft.fwd(X, in);
-    const size_t H = X.size() / 2 + 1;
-    std::vector<double> P(H), S(H, 0.0);
-    for (size_t k = 0; k < H; ++k) P[k] = std::norm(X[k]);
+    WelchOptions o;
+    o.fs = 1.0;
+    o.nperseg = int(x.size());
+    o.noverlap = 0;
+    o.nfft = int(fft_length(x.size()));
+    o.window.assign(size_t(x.size()), 1.0);
+    const std::vector<double> P = welch_psd(std::vector<double>(x.data(), x.data() + x.size()), o).P;
+    const size_t H = P.size();
+    std::vector<double> S(H, 0.0);
     for (size_t k = 0; k < H; ++k) {
         int cnt = 0;
         for (long j = long(k) - 2; j <= long(k) + 2; ++j)
@@ -126,160 +130,6 @@ std::vector<double> smoothed_spectrum(const Eigen::VectorXd& x)
         S[k] /= cnt;
     }
     return S;
-}
-
-// ---- effect parameterisation ------------------------------------------------
-
-struct ParamSpec {
-    double scale;    // physical = scale * normalized
-    double lo, hi;   // normalized bounds
-    bool fixed;      // set by grid search, not by Ceres
-};
-
-struct EffectSetup {
-    Effect kind;
-    Site site = Site::force_input;
-    std::vector<ParamSpec> spec;
-    std::vector<std::vector<double>> starts;  // normalized start vectors
-    bool screen = false;                     // rank starts by cost before refining the best few
-};
-
-// Scales of the data the parameters are normalized by.
-struct Context {
-    double Ts, Su, Sv, umax, fit_seconds;
-    double Sq = 0, kq = 0;                   // coupling: rms nominal deflection, stiffness (0: no coupling)
-    std::vector<double> Sy;                  // std of each compared output
-    std::vector<double> quant_step;          // smallest nonzero |diff| of each compared output
-    std::vector<double> residual_peaks_hz;   // largest peaks of the nominal residual spectrum
-    Eigen::Index fit_samples;
-};
-
-EffectSetup effect_setup(Effect e, const Context& c)
-{
-    EffectSetup s;
-    s.kind = e;
-    const size_t ny = c.Sy.size();
-    const double big = 1e3;
-    switch (e) {
-    case Effect::input_delay: {
-        // Delays are real (interpolated between samples): the integer grid
-        // gives the starts, Ceres refines the best three.
-        const long dmax = std::max<long>(1, std::min<long>(50, long(c.fit_samples / 20)));
-        s.spec = {{c.Ts, 0, double(dmax + 1), false}};
-        for (long d = 1; d <= dmax; ++d) s.starts.push_back({double(d)});
-        s.screen = true;
-        break;
-    }
-    case Effect::output_delay: {
-        // One delay per compared output (sensors have their own latencies):
-        // the grid holds every output delayed alike and, with several
-        // outputs, each one delayed alone.
-        const long dmax = std::max<long>(1, std::min<long>(50, long(c.fit_samples / 20)));
-        for (size_t i = 0; i < ny; ++i) s.spec.push_back({c.Ts, 0, double(dmax + 1), false});
-        for (long d = 1; d <= dmax; ++d) {
-            s.starts.push_back(std::vector<double>(ny, double(d)));
-            for (size_t i = 0; ny > 1 && i < ny; ++i) {
-                std::vector<double> st(ny, 0.0);
-                st[i] = double(d);
-                s.starts.push_back(st);
-            }
-        }
-        s.screen = true;
-        break;
-    }
-    case Effect::coulomb_friction:
-        s.spec = {{c.Su, 0, big, false}, {c.Su, -big, big, false}};
-        s.starts = {{0.05, 0.0}, {0.3, 0.0}};
-        break;
-    case Effect::viscous_friction:
-        s.spec = {{c.Su / c.Sv, -big, big, false}};
-        s.starts = {{0.1}};
-        break;
-    case Effect::stribeck_friction:
-        s.spec = {{c.Su, 0, big, false}, {c.Su, 0, big, false}, {c.Sv, 1e-3, 1e2, false}};
-        s.starts = {{0.05, 0.15, 0.1}, {0.2, 0.4, 0.3}};
-        break;
-    case Effect::backlash:
-    case Effect::deadzone:
-        s.spec = {{c.Su, 0, big, false}};
-        s.starts = {{0.02}, {0.1}, {0.4}};
-        break;
-    case Effect::saturation:
-        s.spec = {{c.umax, 0.02, 2.0, false}};
-        s.starts = {{0.5}, {0.8}, {0.95}};
-        break;
-    case Effect::fractional_damping:
-        s.spec = {{c.Su / c.Sv, -big, big, false}, {1.0, 0.05, 0.95, false}};
-        s.starts = {{0.1, 0.3}, {0.1, 0.7}};
-        break;
-    case Effect::unmodelled_mode: {
-        const double flo = std::max(2.0 / c.fit_seconds, 1e-3), fhi = 0.25 / c.Ts;
-        // zeta <= 0.5: a resonant mode, not an extra first-order lag.
-        s.spec = {{1.0, flo, fhi, false}, {1.0, 0.005, 0.5, false}};
-        for (size_t i = 0; i < ny; ++i) s.spec.push_back({c.Sy[i] / c.Su, -big, big, false});
-        // Starts: the largest peaks of the nominal residual spectrum and a
-        // log grid of 6 per decade over the band (a dither or the reference's
-        // tones can hold the largest peaks), screened by cost, the best 3
-        // refined. With gains of 0 every start would cost what the nominal
-        // costs and the screen could not rank them: they start at
-        // 0.1 std(y)/rms(u).
-        std::vector<double> fs = c.residual_peaks_hz;
-        for (double f = flo; f <= fhi; f *= std::pow(10.0, 1.0 / 6.0)) fs.push_back(f);
-        for (double f : fs) {
-            if (f < flo || f > fhi) continue;
-            std::vector<double> st = {f, 0.05};
-            st.resize(2 + ny, 0.1);
-            s.starts.push_back(st);
-        }
-        s.screen = true;
-        break;
-    }
-    case Effect::gain_error:
-        s.spec = {{1.0, 0.05, 20.0, false}};
-        s.starts = {{1.0}, {0.7}, {1.4}};
-        break;
-    case Effect::sensor_offset:
-        for (size_t i = 0; i < ny; ++i) s.spec.push_back({c.Sy[i], -big, big, false});
-        s.starts = {std::vector<double>(ny, 0.0)};
-        break;
-    case Effect::quantization: {
-        // The lattice step of each output's data, where it is coarser than
-        // the noise (0 otherwise: not quantized); no start when none is.
-        bool any = false;
-        std::vector<double> one;
-        for (size_t i = 0; i < ny; ++i) {
-            s.spec.push_back({1.0, 0, 1e300, true});
-            one.push_back(c.quant_step[i]);
-            any = any || c.quant_step[i] > 0;
-        }
-        if (any) s.starts = {one};
-        break;
-    }
-    }
-    return s;
-}
-
-// The coupling variants (gap.coupling): a play of width w in the deflection
-// q, screened over a log grid of w / rms(q) from 1/4 to 64, 4 per octave
-// (the contacts make the cost rough in w: a grid of octaves ended 25 % short
-// in test_gap_coupling), the best 3 refined; and c D^alpha q with c
-// normalized by k Ts^0.5, from alpha 0.3, 0.5, 0.7 at two levels of c.
-EffectSetup coupling_setup(Effect e, const Context& c)
-{
-    EffectSetup s;
-    s.kind = e;
-    s.site = Site::coupling;
-    if (e == Effect::backlash) {
-        s.spec = {{c.Sq, 0, 1e3, false}};
-        for (double w = 0.25; w <= 64.0; w *= std::pow(2.0, 0.25)) s.starts.push_back({w});
-        s.screen = true;
-    } else {
-        s.spec = {{c.kq * std::sqrt(c.Ts), 0, 1e3, false}, {1.0, 0.05, 0.95, false}};
-        for (double a : {0.3, 0.5, 0.7})
-            for (double g : {0.03, 0.3}) s.starts.push_back({g, a});
-        s.screen = true;
-    }
-    return s;
 }
 
 // ---- fitting ---------------------------------------------------------------
@@ -573,7 +423,7 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
     // Nominal replay and its residuals.
     const ReplayTrace nom = replay(fit_setup, {});
     if (!nom.y.allFinite()) throw std::runtime_error("the nominal model diverges on the recorded inputs");
-    Context ctx;
+    FitContext ctx;
     ctx.Ts = data.Ts;
     ctx.fit_samples = R.fit_samples;
     ctx.fit_seconds = double(R.fit_samples) * data.Ts;
@@ -743,10 +593,10 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
             R.skipped.push_back(effect_name(e) + (model.has_coupling && coupling_capable(e) ? " at the force input" : "") +
                                 ": the model names no velocity output (gap.velocity)");
         } else {
-            variants.push_back(effect_setup(e, ctx));
+            variants.push_back(descriptor(e).setup(ctx, Site::force_input));
         }
         if (model.has_coupling && coupling_capable(e)) {
-            if (ctx.Sq > 0) variants.push_back(coupling_setup(e, ctx));
+            if (ctx.Sq > 0) variants.push_back(descriptor(e).setup(ctx, Site::coupling));
             else R.skipped.push_back(effect_name(e) + " in the coupling: the nominal replay never deflects it");
         }
         bool have = false;
