@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <complex>
+#include <cstdio>
 #include <limits>
 #include <numeric>
 #include <stdexcept>
@@ -301,6 +302,30 @@ struct Evaluator {
     }
 };
 
+// Why the data do not identify a fitted parameter (normalized value x, std
+// sd), or "" when they do: at a bound (within 0.1 % of the bound range, or
+// 1e-6 of an unbounded side's scale), no std (a flat or singular cost), or a
+// std larger than the value (the data cannot tell it from zero).
+std::string unidentified_reason(double x, double sd, const ParamSpec& p)
+{
+    char b[160];
+    const double tol = std::isfinite(p.hi - p.lo) ? 1e-3 * (p.hi - p.lo) : 1e-6;
+    if (std::fabs(x - p.lo) <= tol) {
+        std::snprintf(b, sizeof b, "at its lower bound %.4g", p.lo * p.scale);
+        return b;
+    }
+    if (std::fabs(x - p.hi) <= tol) {
+        std::snprintf(b, sizeof b, "at its upper bound %.4g", p.hi * p.scale);
+        return b;
+    }
+    if (!std::isfinite(sd)) return "no uncertainty estimate (the cost is flat in it)";
+    if (sd > std::fabs(x)) {
+        std::snprintf(b, sizeof b, "std %.3g exceeds |value| %.3g", std::fabs(sd * p.scale), std::fabs(x * p.scale));
+        return b;
+    }
+    return "";
+}
+
 FitReport make_report(const FitProblem& P, const FitOutcome& o, const Evaluator& E, double penalty)
 {
     FitReport r;
@@ -308,12 +333,15 @@ FitReport make_report(const FitProblem& P, const FitOutcome& o, const Evaluator&
     size_t k = 0;
     for (const EffectSetup& e : P.effects) {
         std::vector<double> sd;
+        std::vector<std::string> why;
         for (const ParamSpec& p : e.spec) {
             sd.push_back(p.fixed ? kNaN : p.scale * o.stddev[k]);
+            why.push_back(p.fixed ? "" : unidentified_reason(o.theta[k], o.stddev[k], p));
             r.fitted_params += 1;
             ++k;
         }
         r.stddev.push_back(sd);
+        r.unidentified.push_back(why);
     }
     const Eigen::MatrixXd yhat = E.simulate(r.effects);
     r.gap_after = nrmse(E.y_eval, yhat, E.scale);
@@ -383,6 +411,92 @@ std::vector<Window> flag_windows(const Eigen::VectorXd& res, const ReplayTrace& 
     return out;
 }
 
+// A compared channel of `rec`: finite statistics and a nonzero spread, or
+// one clear error naming the channel.
+void check_channel(const Signals& rec, const std::string& name)
+{
+    const Eigen::VectorXd y = rec.col(name);
+    Eigen::Index kmax = 0;
+    const double amax = y.cwiseAbs().maxCoeff(&kmax);
+    const double mean = y.mean(), var = (y.array() - mean).square().mean();
+    char b[400];
+    if (!std::isfinite(mean) || !std::isfinite(var)) {
+        std::snprintf(b, sizeof b,
+                      "output '%s' of %s: its statistics overflow (a sample of %.4g at t = %.6g s); values must stay "
+                      "below about 1e150 in magnitude",
+                      name.c_str(), rec.source.c_str(), y(kmax), rec.t0 + double(kmax) * rec.Ts);
+        throw std::runtime_error(b);
+    }
+    if (!(var > 0) || std::sqrt(var) <= 1e-14 * std::max(amax, 1e-300)) {
+        std::snprintf(b, sizeof b,
+                      "output '%s' of %s is constant (%.6g over all %ld samples): the gap is relative to an output's "
+                      "variation; leave it out with --outputs",
+                      name.c_str(), rec.source.c_str(), y(0), long(y.size()));
+        throw std::runtime_error(b);
+    }
+}
+
+// Refuses a nominal whose replay on the recorded inputs is not finite or
+// runs away: a residual above 1000 x the output's std is not a gap but a
+// divergence (an unstable nominal, or a wrong loop sign).
+void check_nominal_replay(const NominalModel& model, const ReplayTrace& nom, const Eigen::MatrixXd& ymeas,
+                          const std::vector<std::string>& outs, const std::string& source)
+{
+    for (Eigen::Index c = 0; c < ymeas.cols(); ++c) {
+        const Eigen::VectorXd y = ymeas.col(c);
+        const double sd = std::sqrt((y.array() - y.mean()).square().mean());
+        const bool finite = nom.y.col(c).allFinite();
+        const double worst = finite ? (nom.y.col(c) - y).cwiseAbs().maxCoeff() : std::numeric_limits<double>::infinity();
+        if (finite && worst <= 1e3 * sd) continue;
+        Eigen::EigenSolver<Eigen::MatrixXd> es(model.A, false);
+        const double rho = es.eigenvalues().cwiseAbs().maxCoeff();
+        char b[500];
+        std::snprintf(b, sizeof b,
+                      "the nominal model's replay diverges on %s: output '%s' %s against a recorded std of %.4g (the "
+                      "replay must stay within 1000 stds of the record); the plant's largest eigenvalue is |z| = %.6g "
+                      "per sample%s",
+                      source.c_str(), outs[size_t(c)].c_str(),
+                      finite ? ("is off by " + std::to_string(worst)).c_str() : "becomes infinite or NaN", sd, rho,
+                      rho > 1.0 + 1e-9 ? (model.closed_loop ? " (unstable open loop: check the loop closes it)" : " (unstable)") : "");
+        throw std::runtime_error(b);
+    }
+}
+
+// The verdict's confidence (GapResult::Confidence): the runner-up to the
+// verdict's first effect among the single candidates (none included), the
+// score margin, and the candidates that remove the same share of the
+// held-out gap as the first within `margin` (shrink difference; a relative
+// gap difference would separate two fits that both reach the noise floor),
+// with the experiments that separate them.
+GapResult::Confidence confidence_of(const std::vector<FitReport>& candidates, const FitReport& verdict, double margin)
+{
+    GapResult::Confidence c;
+    auto name = [](const FitReport& f) { return f.effects.empty() ? std::string("none") : effect_name(f.effects[0].kind); };
+    c.first = name(verdict);
+    const FitReport* first = nullptr;
+    for (const FitReport& f : candidates)
+        if (name(f) == c.first) {
+            first = &f;
+            break;
+        }
+    if (!first) return c;
+    for (const FitReport& f : candidates) {
+        if (&f == first) continue;
+        if (c.runner_up.empty()) {
+            c.runner_up = name(f);
+            c.margin = first->score - f.score;
+        }
+        if (f.effects.empty() || first->effects.empty()) continue;
+        if (f.shrink >= first->shrink - margin) {
+            const EffectDescriptor &a = descriptor(first->effects[0].kind), &b = descriptor(f.effects[0].kind);
+            std::string x = std::string("to separate ") + a.name + " from " + b.name + ", record " + a.reveals;
+            if (std::string(a.reveals) != b.reveals) x += std::string("; and ") + b.reveals;
+            c.look_alikes.push_back({b.name, f.gap, x});
+        }
+    }
+    return c;
+}
+
 }  // namespace
 
 GapResult diagnose(const NominalModel& model, const Signals& data, const Signals* validate, const GapOptions& opt)
@@ -402,6 +516,7 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
     if (outs.empty())
         throw std::runtime_error("model/data mismatch: none of the model outputs is a column of " + data.source);
     R.outputs = outs;
+    R.units = model_units(model, outs);
     ReplaySetup fit_setup = make_replay_setup(model, data, opt.inputs, outs);
     ReplaySetup eval_setup_v;
     if (validate) eval_setup_v = make_replay_setup(model, *validate, opt.inputs, outs);
@@ -420,9 +535,16 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
     for (size_t c = 0; c < outs.size(); ++c)
         yeval.col(Eigen::Index(c)) = evsig.col(outs[c]).segment(R.eval_first, R.eval_samples);
 
-    // Nominal replay and its residuals.
+    // Every compared channel must vary, and its statistics must be finite:
+    // the gap is relative to the output's own variation.
+    const Signals& evrec = validate ? *validate : data;
+    for (const Signals* rec : {&data, &evrec})
+        for (const std::string& o : outs) check_channel(*rec, o);
+
+    // Nominal replay and its residuals; a replay that diverges or leaves the
+    // data's range by orders of magnitude is refused (no verdict is honest on it).
     const ReplayTrace nom = replay(fit_setup, {});
-    if (!nom.y.allFinite()) throw std::runtime_error("the nominal model diverges on the recorded inputs");
+    check_nominal_replay(model, nom, ymeas, outs, data.source);
     FitContext ctx;
     ctx.Ts = data.Ts;
     ctx.fit_samples = R.fit_samples;
@@ -692,6 +814,7 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
         }
         R.verdict = best;
     }
+    R.confidence = confidence_of(R.candidates, R.verdict, opt.margin);
 
     // Traces for the report.
     const Eigen::Index n_tr = R.eval_first + R.eval_samples;
@@ -721,24 +844,29 @@ nlohmann::json per_output(const std::vector<std::string>& outs, const std::vecto
 
 nlohmann::json fit_json(const GapResult& R, const FitReport& f, const std::vector<std::pair<double, double>>& bands)
 {
-    nlohmann::json params = nlohmann::json::object(), sd = nlohmann::json::object();
+    nlohmann::json params = nlohmann::json::object(), sd = nlohmann::json::object(), units = nlohmann::json::object(),
+                   unid = nlohmann::json::object();
     std::vector<std::string> names, sites;
     for (size_t i = 0; i < f.effects.size(); ++i) {
-        sites.push_back(f.effects[i].site == Site::coupling ? "coupling" : "force_input");
-        const std::vector<std::string> pn = param_names(f.effects[i].kind, R.outputs);
-        const std::string prefix = f.effects.size() > 1 ? effect_name(f.effects[i].kind) + "." : "";
+        const EffectInstance& e = f.effects[i];
+        sites.push_back(e.site == Site::coupling ? "coupling" : "force_input");
+        const std::vector<ParamInfo> pn = descriptor(e.kind).params(R.outputs, R.units, e.site);
+        const std::string prefix = f.effects.size() > 1 ? effect_name(e.kind) + "." : "";
         for (size_t j = 0; j < pn.size(); ++j) {
-            params[prefix + pn[j]] = num(f.effects[i].params[j]);
-            sd[prefix + pn[j]] = num(f.stddev[i][j]);
+            params[prefix + pn[j].name] = num(e.params[j]);
+            sd[prefix + pn[j].name] = num(f.stddev[i][j]);
+            units[prefix + pn[j].name] = pn[j].unit;
+            if (i < f.unidentified.size() && !f.unidentified[i][j].empty()) unid[prefix + pn[j].name] = f.unidentified[i][j];
         }
-        names.push_back(effect_name(f.effects[i].kind));
+        names.push_back(effect_name(e.kind));
     }
-    nlohmann::json bj = nlohmann::json::array();
+nlohmann::json bj = nlohmann::json::array();
     for (size_t b = 0; b < f.band_nrmse.size() && b < bands.size(); ++b)
         bj.push_back({{"band_hz", {bands[b].first, bands[b].second}}, {"nrmse", per_output(R.outputs, f.band_nrmse[b])}});
     nlohmann::json j = {{"params", params},         {"params_std", sd},     {"gap_after", per_output(R.outputs, f.gap_after)},
                         {"gap_after_total", num(f.gap)}, {"shrink", num(f.shrink)}, {"score", num(f.score)},
-                        {"fitted_params", f.fitted_params}, {"bands", bj}, {"solver", f.solver}};
+                        {"fitted_params", f.fitted_params}, {"bands", bj}, {"solver", f.solver},
+                        {"params_unit", units}, {"unidentified", unid}};
     if (names.empty()) {
         names.push_back("none");
         sites.push_back("");
@@ -777,6 +905,11 @@ nlohmann::json result_json(const GapResult& R)
     }
     j["candidates"] = cj;
     j["verdict"] = fit_json(R, R.verdict, bands);
+    nlohmann::json la = nlohmann::json::array();
+    for (const GapResult::LookAlike& l : R.confidence.look_alikes)
+        la.push_back({{"effect", l.effect}, {"gap_after_total", num(l.gap)}, {"experiment", l.experiment}});
+    j["verdict"]["confidence"] = {{"first", R.confidence.first}, {"runner_up", R.confidence.runner_up},
+                                  {"margin", num(R.confidence.margin)}, {"look_alikes", la}};
     nlohmann::json bb = nlohmann::json::array();
     for (size_t b = 0; b < R.band_nrmse_before.size() && b < bands.size(); ++b)
         bb.push_back({{"band_hz", {bands[b].first, bands[b].second}}, {"nrmse", per_output(R.outputs, R.band_nrmse_before[b])}});
