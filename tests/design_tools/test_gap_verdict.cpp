@@ -178,3 +178,15 @@ TEST(GapVerdict, a_clear_verdict_has_no_look_alike_and_a_margin)
     EXPECT_TRUE(r.confidence.look_alikes.empty());
     EXPECT_GT(r.confidence.margin, 0.05);
 }
+
+TEST(GapVerdict, fracdesign_prints_its_version)
+{
+    const fs::path out = fs::temp_directory_path() / "fracdesign_version.txt";
+    ASSERT_EQ(std::system((std::string(FRACDESIGN_EXE) + " --version > " + out.string()).c_str()), 0);
+    std::ifstream in(out);
+    std::string line;
+    std::getline(in, line);
+    EXPECT_EQ(line.rfind("fracdesign ", 0), 0u) << line;
+    EXPECT_NE(line.find('.'), std::string::npos) << line;
+    fs::remove(out);
+}
