@@ -190,3 +190,22 @@ TEST(GapVerdict, fracdesign_prints_its_version)
     EXPECT_NE(line.find('.'), std::string::npos) << line;
     fs::remove(out);
 }
+
+TEST(GapVerdict, candidate_fits_give_the_same_result_on_one_and_on_two_threads)
+{
+    const NominalModel m = nominal_from_json(lag_doc(kA), kTs);
+    const Signals s = record({{Effect::coulomb_friction, {0.08, 0.0}}, {Effect::input_delay, {3 * kTs}}});
+    GapOptions o;
+    o.effects = {Effect::coulomb_friction, Effect::viscous_friction, Effect::input_delay, Effect::gain_error,
+                 Effect::deadzone, Effect::sensor_offset};
+    o.threads = 1;
+    nlohmann::json one = result_json(diagnose(m, s, nullptr, o));
+    o.threads = 2;
+    int lines = 0;
+    o.progress = [&](const std::string&) { ++lines; };
+    nlohmann::json two = result_json(diagnose(m, s, nullptr, o));
+    EXPECT_EQ(lines, 6);
+    one.erase("seconds");
+    two.erase("seconds");
+    EXPECT_EQ(one.dump(), two.dump());
+}

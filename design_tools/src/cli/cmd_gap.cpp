@@ -63,6 +63,7 @@ int run_gap(const std::vector<std::string>& argv)
     opt.inputs = split(args.str("inputs", ""));
     opt.outputs = split(args.str("outputs", ""));
     opt.holdout = args.num("holdout", 0.3);
+    opt.progress = [](const std::string& line) { std::cerr << line << "\n"; };
     if (!(opt.holdout > 0 && opt.holdout < 1)) throw UsageError("--holdout must be in (0, 1)");
     if (args.has("effects")) {
         opt.effects.clear();

@@ -4,6 +4,10 @@
 #include <ceres/ceres.h>
 
 #include <algorithm>
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <thread>
 #include <chrono>
 #include <cmath>
 #include <complex>
@@ -705,8 +709,16 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
     base_problem.setup = &fit_setup;
     base_problem.y = ymeas.topRows(R.fit_samples);
     base_problem.sigma = sigma;
-    std::vector<std::pair<FitReport, EffectSetup>> singles;
-    for (Effect e : opt.effects) {
+    // The single fits are independent: they run on opt.threads workers
+    // (each job's result lands in its own slot, so the outcome does not
+    // depend on the thread count or the order the jobs finish in).
+    struct Job {
+        size_t effect;
+        EffectSetup setup;
+    };
+    std::vector<Job> jobs;
+    for (size_t ie = 0; ie < opt.effects.size(); ++ie) {
+        const Effect e = opt.effects[ie];
         // The effect at the force input and, for backlash and fractional
         // damping with a declared coupling, in the coupling: each variant is
         // fitted, the one with the better score is the effect's candidate.
@@ -721,8 +733,6 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
             if (ctx.Sq > 0) variants.push_back(descriptor(e).setup(ctx, Site::coupling));
             else R.skipped.push_back(effect_name(e) + " in the coupling: the nominal replay never deflects it");
         }
-        bool have = false;
-        std::pair<FitReport, EffectSetup> best;
         for (const EffectSetup& es : variants) {
             if (es.starts.empty()) {
                 R.skipped.push_back(effect_name(e) + (e == Effect::quantization
@@ -730,11 +740,49 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
                                                            : ": no start value from the data"));
                 continue;
             }
-            FitProblem P = base_problem;
-            P.effects = {es};
-            const FitOutcome o = fit_set(P, {}, opt.max_iterations);
-            FitReport rep = make_report(P, o, E, opt.param_penalty);
-            if (!have || rep.score > best.first.score) best = {rep, es};
+            jobs.push_back({ie, es});
+        }
+    }
+    std::vector<FitReport> job_report(jobs.size());
+    {
+        std::atomic<size_t> next{0};
+        size_t done = 0;
+        std::mutex mu;
+        std::exception_ptr failure;
+        auto work = [&]() {
+            for (size_t i = next++; i < jobs.size(); i = next++) {
+                try {
+                    FitProblem P = base_problem;
+                    P.effects = {jobs[i].setup};
+                    const FitOutcome o = fit_set(P, {}, opt.max_iterations);
+                    job_report[i] = make_report(P, o, E, opt.param_penalty);
+                } catch (...) {
+                    std::lock_guard<std::mutex> lk(mu);
+                    if (!failure) failure = std::current_exception();
+                }
+                std::lock_guard<std::mutex> lk(mu);
+                ++done;
+                if (opt.progress)
+                    opt.progress("gap: fitted " + std::to_string(done) + "/" + std::to_string(jobs.size()) + " candidates (" +
+                                 effect_name(jobs[i].setup.kind) +
+                                 (jobs[i].setup.site == Site::coupling ? " in the coupling" : "") + ")");
+            }
+        };
+        const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+        const size_t nthreads = std::min<size_t>(jobs.size(), opt.threads > 0 ? size_t(opt.threads) : size_t(hw));
+        std::vector<std::thread> pool;
+        for (size_t t = 1; t < nthreads; ++t) pool.emplace_back(work);
+        work();
+        for (std::thread& t : pool) t.join();
+        if (failure) std::rethrow_exception(failure);
+    }
+    std::vector<std::pair<FitReport, EffectSetup>> singles;
+    for (size_t ie = 0; ie < opt.effects.size(); ++ie) {
+        bool have = false;
+        std::pair<FitReport, EffectSetup> best;
+        for (size_t i = 0; i < jobs.size(); ++i) {
+            if (jobs[i].effect != ie) continue;
+            if (!have || job_report[i].score > best.first.score) best = {job_report[i], jobs[i].setup};
             have = true;
         }
         if (have) singles.push_back(best);

@@ -9,6 +9,7 @@
 #pragma once
 #include <Eigen/Dense>
 #include <nlohmann/json.hpp>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,8 @@ struct GapOptions {
     double margin = 0.05;               // forward selection: relative held-out gap reduction needed to add an effect
     int max_effects = 3;                // forward selection depth
     int max_iterations = 30;            // Ceres iterations per start (half in forward selection)
+    int threads = 0;                    // workers for the independent single fits (0: one per core); results do not depend on it
+    std::function<void(const std::string&)> progress;  // one line per finished fit (the CLI prints them on stderr)
 };
 
 struct FitReport {
