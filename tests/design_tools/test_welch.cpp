@@ -90,6 +90,39 @@ TEST(Welch, h1_estimate_recovers_a_known_filter)
     }
 }
 
+TEST(Welch, psd_is_the_auto_spectrum_of_tfestimate_and_keeps_parseval)
+{
+    // welch_psd(x) = Pxx of welch_tfestimate(x, .); with one rectangular segment its bins integrate to
+    // the mean square (Parseval for the one-sided density).
+    std::vector<double> x(3000), y(x.size());
+    for (size_t i = 0; i < x.size(); ++i) {
+        x[i] = std::sin(0.37 * double(i)) + 0.25 * std::cos(0.011 * double(i) * double(i) / 100.0);
+        y[i] = 0.5 * x[i];
+    }
+    WelchOptions o;
+    o.fs = 200.0;
+    o.nperseg = 512;
+    o.noverlap = 128;
+    const WelchResult r = welch_tfestimate(x, y, o);
+    const WelchPsd p = welch_psd(x, o);
+    ASSERT_EQ(p.P.size(), r.Pxx.size());
+    EXPECT_EQ(p.segments, r.segments);
+    for (size_t i = 0; i < p.P.size(); ++i) EXPECT_NEAR(p.P[i], r.Pxx[i], 1e-12 * (1 + r.Pxx[i]));
+    WelchOptions one;
+    one.fs = 200.0;
+    one.nperseg = int(x.size());
+    one.noverlap = 0;
+    one.nfft = 4096;
+    one.window.assign(x.size(), 1.0);
+    const WelchPsd q = welch_psd(x, one);
+    double ms = 0, integral = 0;
+    for (double v : x) ms += v * v / double(x.size());
+    for (double v : q.P) integral += v * one.fs / one.nfft;
+    EXPECT_NEAR(integral, ms, 1e-9 * ms);
+    x[17] = NAN;
+    EXPECT_THROW(welch_psd(x, o), std::invalid_argument);
+}
+
 TEST(Welch, matlab_segmentation_of_seed000_gives_eight_segments)
 {
     // seed 000 Sec. 5.1: 8 Hamming segments, 15 % overlap, nfft = 160000, 120 s at 1 kHz

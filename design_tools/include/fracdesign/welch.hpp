@@ -45,4 +45,14 @@ WelchOptions welch_matlab_segments(std::size_t M, int nsegments, double overlap,
 // a sample is not finite, nperseg > M or < 2, noverlap out of range, nfft < nperseg, fs <= 0, window size).
 WelchResult welch_tfestimate(const std::vector<double>& x, const std::vector<double>& y, const WelchOptions& opt);
 
+// Auto spectral density of one signal by the same segmentation, window and scaling (Pxx of
+// welch_tfestimate, one FFT per segment instead of two): scipy.signal.welch(..., scaling='density').
+// Same errors as welch_tfestimate.
+struct WelchPsd {
+    std::vector<double> f;  // Hz, nfft/2 + 1 bins
+    std::vector<double> P;  // [unit^2/Hz]
+    int segments = 0;
+};
+WelchPsd welch_psd(const std::vector<double>& x, const WelchOptions& opt);
+
 }  // namespace fracdesign

@@ -2,6 +2,7 @@
 // Reads the nominal model and the record, runs the diagnosis, and writes
 // DIR/result.json and DIR/report.html through a temporary directory that is
 // renamed into place, so a failed run leaves nothing half-written.
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -62,6 +63,7 @@ int run_gap(const std::vector<std::string>& argv)
     opt.inputs = split(args.str("inputs", ""));
     opt.outputs = split(args.str("outputs", ""));
     opt.holdout = args.num("holdout", 0.3);
+    opt.progress = [](const std::string& line) { std::cerr << line << "\n"; };
     if (!(opt.holdout > 0 && opt.holdout < 1)) throw UsageError("--holdout must be in (0, 1)");
     if (args.has("effects")) {
         opt.effects.clear();
@@ -121,10 +123,26 @@ int run_gap(const std::vector<std::string>& argv)
     std::snprintf(b, sizeof b, "  verdict: %s (held-out gap %.4g -> %.4g, shrink %.1f %%)\n", v.c_str(),
                   r.gap_before_total, r.verdict.gap, 100 * r.verdict.shrink);
     std::cout << b;
-    for (auto it = j["verdict"]["params"].begin(); it != j["verdict"]["params"].end(); ++it) {
-        const auto& sd = j["verdict"]["params_std"][it.key()];
-        std::cout << "    " << it.key() << " = " << it.value() << (sd.is_null() ? "" : " +- " + sd.dump()) << "\n";
+    const auto& vj = j["verdict"];
+    for (auto it = vj["params"].begin(); it != vj["params"].end(); ++it) {
+        const auto& sd = vj["params_std"][it.key()];
+        const std::string unit = vj["params_unit"].value(it.key(), std::string());
+        std::cout << "    " << it.key() << " = " << it.value() << (unit.empty() || unit == "1" ? "" : " " + unit);
+        if (vj["unidentified"].contains(it.key()))
+            std::cout << "  (not identified by this record: " << vj["unidentified"][it.key()].get<std::string>() << ")";
+        else if (!sd.is_null())
+            std::cout << " +- " << sd.dump();
+        std::cout << "\n";
     }
+    const auto& cf = vj["confidence"];
+    if (!cf["runner_up"].get<std::string>().empty()) {
+        std::snprintf(b, sizeof b, "  confidence: score margin %.3f to the runner-up %s\n",
+                      cf["margin"].is_null() ? NAN : cf["margin"].get<double>(), cf["runner_up"].get<std::string>().c_str());
+        std::cout << b;
+    }
+    for (const auto& l : cf["look_alikes"])
+        std::cout << "  cannot tell " << cf["first"].get<std::string>() << " from " << l["effect"].get<std::string>()
+                  << " on this record: " << l["experiment"].get<std::string>() << "\n";
     std::cout << "  wrote " << (out / "result.json").string() << " and " << (out / "report.html").string() << "\n";
     return 0;
 }

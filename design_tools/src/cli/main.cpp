@@ -21,6 +21,10 @@ int main(int argc, char** argv)
         return 2;
     }
     std::string name = argv[1];
+    if (name == "--version") {
+        std::cout << "fracdesign " << FRACDESIGN_VERSION << "\n";
+        return 0;
+    }
     if (name == "--help" || name == "-h" || name == "help") {
         usage(std::cout);
         return 0;

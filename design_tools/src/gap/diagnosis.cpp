@@ -4,13 +4,20 @@
 #include <ceres/ceres.h>
 
 #include <algorithm>
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <thread>
 #include <chrono>
 #include <cmath>
 #include <complex>
+#include <cstdio>
 #include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <unsupported/Eigen/FFT>
+
+#include "fracdesign/welch.hpp"
 
 namespace fracdesign {
 namespace gap {
@@ -105,17 +112,19 @@ std::vector<std::vector<double>> band_nrmse(const Eigen::MatrixXd& y, const Eige
 }
 
 // Smoothed periodogram (5-bin moving average) of one signal, one-sided, on
-// the zero-padded length fft_length(x.size()).
+// the zero-padded length fft_length(x.size()): the project's spectrum
+// estimator (welch_psd) with one rectangular segment of the whole record.
 std::vector<double> smoothed_spectrum(const Eigen::VectorXd& x)
 {
-    Eigen::FFT<double> fft;
-    std::vector<double> in(x.data(), x.data() + x.size());
-    in.resize(size_t(fft_length(x.size())), 0.0);
-    std::vector<std::complex<double>> X;
-    fft.fwd(X, in);
-    const size_t H = X.size() / 2 + 1;
-    std::vector<double> P(H), S(H, 0.0);
-    for (size_t k = 0; k < H; ++k) P[k] = std::norm(X[k]);
+    WelchOptions o;
+    o.fs = 1.0;
+    o.nperseg = int(x.size());
+    o.noverlap = 0;
+    o.nfft = int(fft_length(x.size()));
+    o.window.assign(size_t(x.size()), 1.0);
+    const std::vector<double> P = welch_psd(std::vector<double>(x.data(), x.data() + x.size()), o).P;
+    const size_t H = P.size();
+    std::vector<double> S(H, 0.0);
     for (size_t k = 0; k < H; ++k) {
         int cnt = 0;
         for (long j = long(k) - 2; j <= long(k) + 2; ++j)
@@ -126,160 +135,6 @@ std::vector<double> smoothed_spectrum(const Eigen::VectorXd& x)
         S[k] /= cnt;
     }
     return S;
-}
-
-// ---- effect parameterisation ------------------------------------------------
-
-struct ParamSpec {
-    double scale;    // physical = scale * normalized
-    double lo, hi;   // normalized bounds
-    bool fixed;      // set by grid search, not by Ceres
-};
-
-struct EffectSetup {
-    Effect kind;
-    Site site = Site::force_input;
-    std::vector<ParamSpec> spec;
-    std::vector<std::vector<double>> starts;  // normalized start vectors
-    bool screen = false;                     // rank starts by cost before refining the best few
-};
-
-// Scales of the data the parameters are normalized by.
-struct Context {
-    double Ts, Su, Sv, umax, fit_seconds;
-    double Sq = 0, kq = 0;                   // coupling: rms nominal deflection, stiffness (0: no coupling)
-    std::vector<double> Sy;                  // std of each compared output
-    std::vector<double> quant_step;          // smallest nonzero |diff| of each compared output
-    std::vector<double> residual_peaks_hz;   // largest peaks of the nominal residual spectrum
-    Eigen::Index fit_samples;
-};
-
-EffectSetup effect_setup(Effect e, const Context& c)
-{
-    EffectSetup s;
-    s.kind = e;
-    const size_t ny = c.Sy.size();
-    const double big = 1e3;
-    switch (e) {
-    case Effect::input_delay: {
-        // Delays are real (interpolated between samples): the integer grid
-        // gives the starts, Ceres refines the best three.
-        const long dmax = std::max<long>(1, std::min<long>(50, long(c.fit_samples / 20)));
-        s.spec = {{c.Ts, 0, double(dmax + 1), false}};
-        for (long d = 1; d <= dmax; ++d) s.starts.push_back({double(d)});
-        s.screen = true;
-        break;
-    }
-    case Effect::output_delay: {
-        // One delay per compared output (sensors have their own latencies):
-        // the grid holds every output delayed alike and, with several
-        // outputs, each one delayed alone.
-        const long dmax = std::max<long>(1, std::min<long>(50, long(c.fit_samples / 20)));
-        for (size_t i = 0; i < ny; ++i) s.spec.push_back({c.Ts, 0, double(dmax + 1), false});
-        for (long d = 1; d <= dmax; ++d) {
-            s.starts.push_back(std::vector<double>(ny, double(d)));
-            for (size_t i = 0; ny > 1 && i < ny; ++i) {
-                std::vector<double> st(ny, 0.0);
-                st[i] = double(d);
-                s.starts.push_back(st);
-            }
-        }
-        s.screen = true;
-        break;
-    }
-    case Effect::coulomb_friction:
-        s.spec = {{c.Su, 0, big, false}, {c.Su, -big, big, false}};
-        s.starts = {{0.05, 0.0}, {0.3, 0.0}};
-        break;
-    case Effect::viscous_friction:
-        s.spec = {{c.Su / c.Sv, -big, big, false}};
-        s.starts = {{0.1}};
-        break;
-    case Effect::stribeck_friction:
-        s.spec = {{c.Su, 0, big, false}, {c.Su, 0, big, false}, {c.Sv, 1e-3, 1e2, false}};
-        s.starts = {{0.05, 0.15, 0.1}, {0.2, 0.4, 0.3}};
-        break;
-    case Effect::backlash:
-    case Effect::deadzone:
-        s.spec = {{c.Su, 0, big, false}};
-        s.starts = {{0.02}, {0.1}, {0.4}};
-        break;
-    case Effect::saturation:
-        s.spec = {{c.umax, 0.02, 2.0, false}};
-        s.starts = {{0.5}, {0.8}, {0.95}};
-        break;
-    case Effect::fractional_damping:
-        s.spec = {{c.Su / c.Sv, -big, big, false}, {1.0, 0.05, 0.95, false}};
-        s.starts = {{0.1, 0.3}, {0.1, 0.7}};
-        break;
-    case Effect::unmodelled_mode: {
-        const double flo = std::max(2.0 / c.fit_seconds, 1e-3), fhi = 0.25 / c.Ts;
-        // zeta <= 0.5: a resonant mode, not an extra first-order lag.
-        s.spec = {{1.0, flo, fhi, false}, {1.0, 0.005, 0.5, false}};
-        for (size_t i = 0; i < ny; ++i) s.spec.push_back({c.Sy[i] / c.Su, -big, big, false});
-        // Starts: the largest peaks of the nominal residual spectrum and a
-        // log grid of 6 per decade over the band (a dither or the reference's
-        // tones can hold the largest peaks), screened by cost, the best 3
-        // refined. With gains of 0 every start would cost what the nominal
-        // costs and the screen could not rank them: they start at
-        // 0.1 std(y)/rms(u).
-        std::vector<double> fs = c.residual_peaks_hz;
-        for (double f = flo; f <= fhi; f *= std::pow(10.0, 1.0 / 6.0)) fs.push_back(f);
-        for (double f : fs) {
-            if (f < flo || f > fhi) continue;
-            std::vector<double> st = {f, 0.05};
-            st.resize(2 + ny, 0.1);
-            s.starts.push_back(st);
-        }
-        s.screen = true;
-        break;
-    }
-    case Effect::gain_error:
-        s.spec = {{1.0, 0.05, 20.0, false}};
-        s.starts = {{1.0}, {0.7}, {1.4}};
-        break;
-    case Effect::sensor_offset:
-        for (size_t i = 0; i < ny; ++i) s.spec.push_back({c.Sy[i], -big, big, false});
-        s.starts = {std::vector<double>(ny, 0.0)};
-        break;
-    case Effect::quantization: {
-        // The lattice step of each output's data, where it is coarser than
-        // the noise (0 otherwise: not quantized); no start when none is.
-        bool any = false;
-        std::vector<double> one;
-        for (size_t i = 0; i < ny; ++i) {
-            s.spec.push_back({1.0, 0, 1e300, true});
-            one.push_back(c.quant_step[i]);
-            any = any || c.quant_step[i] > 0;
-        }
-        if (any) s.starts = {one};
-        break;
-    }
-    }
-    return s;
-}
-
-// The coupling variants (gap.coupling): a play of width w in the deflection
-// q, screened over a log grid of w / rms(q) from 1/4 to 64, 4 per octave
-// (the contacts make the cost rough in w: a grid of octaves ended 25 % short
-// in test_gap_coupling), the best 3 refined; and c D^alpha q with c
-// normalized by k Ts^0.5, from alpha 0.3, 0.5, 0.7 at two levels of c.
-EffectSetup coupling_setup(Effect e, const Context& c)
-{
-    EffectSetup s;
-    s.kind = e;
-    s.site = Site::coupling;
-    if (e == Effect::backlash) {
-        s.spec = {{c.Sq, 0, 1e3, false}};
-        for (double w = 0.25; w <= 64.0; w *= std::pow(2.0, 0.25)) s.starts.push_back({w});
-        s.screen = true;
-    } else {
-        s.spec = {{c.kq * std::sqrt(c.Ts), 0, 1e3, false}, {1.0, 0.05, 0.95, false}};
-        for (double a : {0.3, 0.5, 0.7})
-            for (double g : {0.03, 0.3}) s.starts.push_back({g, a});
-        s.screen = true;
-    }
-    return s;
 }
 
 // ---- fitting ---------------------------------------------------------------
@@ -451,6 +306,30 @@ struct Evaluator {
     }
 };
 
+// Why the data do not identify a fitted parameter (normalized value x, std
+// sd), or "" when they do: at a bound (within 0.1 % of the bound range, or
+// 1e-6 of an unbounded side's scale), no std (a flat or singular cost), or a
+// std larger than the value (the data cannot tell it from zero).
+std::string unidentified_reason(double x, double sd, const ParamSpec& p)
+{
+    char b[160];
+    const double tol = std::isfinite(p.hi - p.lo) ? 1e-3 * (p.hi - p.lo) : 1e-6;
+    if (std::fabs(x - p.lo) <= tol) {
+        std::snprintf(b, sizeof b, "at its lower bound %.4g", p.lo * p.scale);
+        return b;
+    }
+    if (std::fabs(x - p.hi) <= tol) {
+        std::snprintf(b, sizeof b, "at its upper bound %.4g", p.hi * p.scale);
+        return b;
+    }
+    if (!std::isfinite(sd)) return "no uncertainty estimate (the cost is flat in it)";
+    if (sd > std::fabs(x)) {
+        std::snprintf(b, sizeof b, "std %.3g exceeds |value| %.3g", std::fabs(sd * p.scale), std::fabs(x * p.scale));
+        return b;
+    }
+    return "";
+}
+
 FitReport make_report(const FitProblem& P, const FitOutcome& o, const Evaluator& E, double penalty)
 {
     FitReport r;
@@ -458,12 +337,15 @@ FitReport make_report(const FitProblem& P, const FitOutcome& o, const Evaluator&
     size_t k = 0;
     for (const EffectSetup& e : P.effects) {
         std::vector<double> sd;
+        std::vector<std::string> why;
         for (const ParamSpec& p : e.spec) {
             sd.push_back(p.fixed ? kNaN : p.scale * o.stddev[k]);
+            why.push_back(p.fixed ? "" : unidentified_reason(o.theta[k], o.stddev[k], p));
             r.fitted_params += 1;
             ++k;
         }
         r.stddev.push_back(sd);
+        r.unidentified.push_back(why);
     }
     const Eigen::MatrixXd yhat = E.simulate(r.effects);
     r.gap_after = nrmse(E.y_eval, yhat, E.scale);
@@ -533,6 +415,92 @@ std::vector<Window> flag_windows(const Eigen::VectorXd& res, const ReplayTrace& 
     return out;
 }
 
+// A compared channel of `rec`: finite statistics and a nonzero spread, or
+// one clear error naming the channel.
+void check_channel(const Signals& rec, const std::string& name)
+{
+    const Eigen::VectorXd y = rec.col(name);
+    Eigen::Index kmax = 0;
+    const double amax = y.cwiseAbs().maxCoeff(&kmax);
+    const double mean = y.mean(), var = (y.array() - mean).square().mean();
+    char b[400];
+    if (!std::isfinite(mean) || !std::isfinite(var)) {
+        std::snprintf(b, sizeof b,
+                      "output '%s' of %s: its statistics overflow (a sample of %.4g at t = %.6g s); values must stay "
+                      "below about 1e150 in magnitude",
+                      name.c_str(), rec.source.c_str(), y(kmax), rec.t0 + double(kmax) * rec.Ts);
+        throw std::runtime_error(b);
+    }
+    if (!(var > 0) || std::sqrt(var) <= 1e-14 * std::max(amax, 1e-300)) {
+        std::snprintf(b, sizeof b,
+                      "output '%s' of %s is constant (%.6g over all %ld samples): the gap is relative to an output's "
+                      "variation; leave it out with --outputs",
+                      name.c_str(), rec.source.c_str(), y(0), long(y.size()));
+        throw std::runtime_error(b);
+    }
+}
+
+// Refuses a nominal whose replay on the recorded inputs is not finite or
+// runs away: a residual above 1000 x the output's std is not a gap but a
+// divergence (an unstable nominal, or a wrong loop sign).
+void check_nominal_replay(const NominalModel& model, const ReplayTrace& nom, const Eigen::MatrixXd& ymeas,
+                          const std::vector<std::string>& outs, const std::string& source)
+{
+    for (Eigen::Index c = 0; c < ymeas.cols(); ++c) {
+        const Eigen::VectorXd y = ymeas.col(c);
+        const double sd = std::sqrt((y.array() - y.mean()).square().mean());
+        const bool finite = nom.y.col(c).allFinite();
+        const double worst = finite ? (nom.y.col(c) - y).cwiseAbs().maxCoeff() : std::numeric_limits<double>::infinity();
+        if (finite && worst <= 1e3 * sd) continue;
+        Eigen::EigenSolver<Eigen::MatrixXd> es(model.A, false);
+        const double rho = es.eigenvalues().cwiseAbs().maxCoeff();
+        char b[500];
+        std::snprintf(b, sizeof b,
+                      "the nominal model's replay diverges on %s: output '%s' %s against a recorded std of %.4g (the "
+                      "replay must stay within 1000 stds of the record); the plant's largest eigenvalue is |z| = %.6g "
+                      "per sample%s",
+                      source.c_str(), outs[size_t(c)].c_str(),
+                      finite ? ("is off by " + std::to_string(worst)).c_str() : "becomes infinite or NaN", sd, rho,
+                      rho > 1.0 + 1e-9 ? (model.closed_loop ? " (unstable open loop: check the loop closes it)" : " (unstable)") : "");
+        throw std::runtime_error(b);
+    }
+}
+
+// The verdict's confidence (GapResult::Confidence): the runner-up to the
+// verdict's first effect among the single candidates (none included), the
+// score margin, and the candidates that remove the same share of the
+// held-out gap as the first within `margin` (shrink difference; a relative
+// gap difference would separate two fits that both reach the noise floor),
+// with the experiments that separate them.
+GapResult::Confidence confidence_of(const std::vector<FitReport>& candidates, const FitReport& verdict, double margin)
+{
+    GapResult::Confidence c;
+    auto name = [](const FitReport& f) { return f.effects.empty() ? std::string("none") : effect_name(f.effects[0].kind); };
+    c.first = name(verdict);
+    const FitReport* first = nullptr;
+    for (const FitReport& f : candidates)
+        if (name(f) == c.first) {
+            first = &f;
+            break;
+        }
+    if (!first) return c;
+    for (const FitReport& f : candidates) {
+        if (&f == first) continue;
+        if (c.runner_up.empty()) {
+            c.runner_up = name(f);
+            c.margin = first->score - f.score;
+        }
+        if (f.effects.empty() || first->effects.empty()) continue;
+        if (f.shrink >= first->shrink - margin) {
+            const EffectDescriptor &a = descriptor(first->effects[0].kind), &b = descriptor(f.effects[0].kind);
+            std::string x = std::string("to separate ") + a.name + " from " + b.name + ", record " + a.reveals;
+            if (std::string(a.reveals) != b.reveals) x += std::string("; and ") + b.reveals;
+            c.look_alikes.push_back({b.name, f.gap, x});
+        }
+    }
+    return c;
+}
+
 }  // namespace
 
 GapResult diagnose(const NominalModel& model, const Signals& data, const Signals* validate, const GapOptions& opt)
@@ -552,6 +520,7 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
     if (outs.empty())
         throw std::runtime_error("model/data mismatch: none of the model outputs is a column of " + data.source);
     R.outputs = outs;
+    R.units = model_units(model, outs);
     ReplaySetup fit_setup = make_replay_setup(model, data, opt.inputs, outs);
     ReplaySetup eval_setup_v;
     if (validate) eval_setup_v = make_replay_setup(model, *validate, opt.inputs, outs);
@@ -570,10 +539,17 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
     for (size_t c = 0; c < outs.size(); ++c)
         yeval.col(Eigen::Index(c)) = evsig.col(outs[c]).segment(R.eval_first, R.eval_samples);
 
-    // Nominal replay and its residuals.
+    // Every compared channel must vary, and its statistics must be finite:
+    // the gap is relative to the output's own variation.
+    const Signals& evrec = validate ? *validate : data;
+    for (const Signals* rec : {&data, &evrec})
+        for (const std::string& o : outs) check_channel(*rec, o);
+
+    // Nominal replay and its residuals; a replay that diverges or leaves the
+    // data's range by orders of magnitude is refused (no verdict is honest on it).
     const ReplayTrace nom = replay(fit_setup, {});
-    if (!nom.y.allFinite()) throw std::runtime_error("the nominal model diverges on the recorded inputs");
-    Context ctx;
+    check_nominal_replay(model, nom, ymeas, outs, data.source);
+    FitContext ctx;
     ctx.Ts = data.Ts;
     ctx.fit_samples = R.fit_samples;
     ctx.fit_seconds = double(R.fit_samples) * data.Ts;
@@ -733,8 +709,16 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
     base_problem.setup = &fit_setup;
     base_problem.y = ymeas.topRows(R.fit_samples);
     base_problem.sigma = sigma;
-    std::vector<std::pair<FitReport, EffectSetup>> singles;
-    for (Effect e : opt.effects) {
+    // The single fits are independent: they run on opt.threads workers
+    // (each job's result lands in its own slot, so the outcome does not
+    // depend on the thread count or the order the jobs finish in).
+    struct Job {
+        size_t effect;
+        EffectSetup setup;
+    };
+    std::vector<Job> jobs;
+    for (size_t ie = 0; ie < opt.effects.size(); ++ie) {
+        const Effect e = opt.effects[ie];
         // The effect at the force input and, for backlash and fractional
         // damping with a declared coupling, in the coupling: each variant is
         // fitted, the one with the better score is the effect's candidate.
@@ -743,14 +727,12 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
             R.skipped.push_back(effect_name(e) + (model.has_coupling && coupling_capable(e) ? " at the force input" : "") +
                                 ": the model names no velocity output (gap.velocity)");
         } else {
-            variants.push_back(effect_setup(e, ctx));
+            variants.push_back(descriptor(e).setup(ctx, Site::force_input));
         }
         if (model.has_coupling && coupling_capable(e)) {
-            if (ctx.Sq > 0) variants.push_back(coupling_setup(e, ctx));
+            if (ctx.Sq > 0) variants.push_back(descriptor(e).setup(ctx, Site::coupling));
             else R.skipped.push_back(effect_name(e) + " in the coupling: the nominal replay never deflects it");
         }
-        bool have = false;
-        std::pair<FitReport, EffectSetup> best;
         for (const EffectSetup& es : variants) {
             if (es.starts.empty()) {
                 R.skipped.push_back(effect_name(e) + (e == Effect::quantization
@@ -758,11 +740,49 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
                                                            : ": no start value from the data"));
                 continue;
             }
-            FitProblem P = base_problem;
-            P.effects = {es};
-            const FitOutcome o = fit_set(P, {}, opt.max_iterations);
-            FitReport rep = make_report(P, o, E, opt.param_penalty);
-            if (!have || rep.score > best.first.score) best = {rep, es};
+            jobs.push_back({ie, es});
+        }
+    }
+    std::vector<FitReport> job_report(jobs.size());
+    {
+        std::atomic<size_t> next{0};
+        size_t done = 0;
+        std::mutex mu;
+        std::exception_ptr failure;
+        auto work = [&]() {
+            for (size_t i = next++; i < jobs.size(); i = next++) {
+                try {
+                    FitProblem P = base_problem;
+                    P.effects = {jobs[i].setup};
+                    const FitOutcome o = fit_set(P, {}, opt.max_iterations);
+                    job_report[i] = make_report(P, o, E, opt.param_penalty);
+                } catch (...) {
+                    std::lock_guard<std::mutex> lk(mu);
+                    if (!failure) failure = std::current_exception();
+                }
+                std::lock_guard<std::mutex> lk(mu);
+                ++done;
+                if (opt.progress)
+                    opt.progress("gap: fitted " + std::to_string(done) + "/" + std::to_string(jobs.size()) + " candidates (" +
+                                 effect_name(jobs[i].setup.kind) +
+                                 (jobs[i].setup.site == Site::coupling ? " in the coupling" : "") + ")");
+            }
+        };
+        const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+        const size_t nthreads = std::min<size_t>(jobs.size(), opt.threads > 0 ? size_t(opt.threads) : size_t(hw));
+        std::vector<std::thread> pool;
+        for (size_t t = 1; t < nthreads; ++t) pool.emplace_back(work);
+        work();
+        for (std::thread& t : pool) t.join();
+        if (failure) std::rethrow_exception(failure);
+    }
+    std::vector<std::pair<FitReport, EffectSetup>> singles;
+    for (size_t ie = 0; ie < opt.effects.size(); ++ie) {
+        bool have = false;
+        std::pair<FitReport, EffectSetup> best;
+        for (size_t i = 0; i < jobs.size(); ++i) {
+            if (jobs[i].effect != ie) continue;
+            if (!have || job_report[i].score > best.first.score) best = {job_report[i], jobs[i].setup};
             have = true;
         }
         if (have) singles.push_back(best);
@@ -842,6 +862,7 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
         }
         R.verdict = best;
     }
+    R.confidence = confidence_of(R.candidates, R.verdict, opt.margin);
 
     // Traces for the report.
     const Eigen::Index n_tr = R.eval_first + R.eval_samples;
@@ -871,24 +892,29 @@ nlohmann::json per_output(const std::vector<std::string>& outs, const std::vecto
 
 nlohmann::json fit_json(const GapResult& R, const FitReport& f, const std::vector<std::pair<double, double>>& bands)
 {
-    nlohmann::json params = nlohmann::json::object(), sd = nlohmann::json::object();
+    nlohmann::json params = nlohmann::json::object(), sd = nlohmann::json::object(), units = nlohmann::json::object(),
+                   unid = nlohmann::json::object();
     std::vector<std::string> names, sites;
     for (size_t i = 0; i < f.effects.size(); ++i) {
-        sites.push_back(f.effects[i].site == Site::coupling ? "coupling" : "force_input");
-        const std::vector<std::string> pn = param_names(f.effects[i].kind, R.outputs);
-        const std::string prefix = f.effects.size() > 1 ? effect_name(f.effects[i].kind) + "." : "";
+        const EffectInstance& e = f.effects[i];
+        sites.push_back(e.site == Site::coupling ? "coupling" : "force_input");
+        const std::vector<ParamInfo> pn = descriptor(e.kind).params(R.outputs, R.units, e.site);
+        const std::string prefix = f.effects.size() > 1 ? effect_name(e.kind) + "." : "";
         for (size_t j = 0; j < pn.size(); ++j) {
-            params[prefix + pn[j]] = num(f.effects[i].params[j]);
-            sd[prefix + pn[j]] = num(f.stddev[i][j]);
+            params[prefix + pn[j].name] = num(e.params[j]);
+            sd[prefix + pn[j].name] = num(f.stddev[i][j]);
+            units[prefix + pn[j].name] = pn[j].unit;
+            if (i < f.unidentified.size() && !f.unidentified[i][j].empty()) unid[prefix + pn[j].name] = f.unidentified[i][j];
         }
-        names.push_back(effect_name(f.effects[i].kind));
+        names.push_back(effect_name(e.kind));
     }
-    nlohmann::json bj = nlohmann::json::array();
+nlohmann::json bj = nlohmann::json::array();
     for (size_t b = 0; b < f.band_nrmse.size() && b < bands.size(); ++b)
         bj.push_back({{"band_hz", {bands[b].first, bands[b].second}}, {"nrmse", per_output(R.outputs, f.band_nrmse[b])}});
     nlohmann::json j = {{"params", params},         {"params_std", sd},     {"gap_after", per_output(R.outputs, f.gap_after)},
                         {"gap_after_total", num(f.gap)}, {"shrink", num(f.shrink)}, {"score", num(f.score)},
-                        {"fitted_params", f.fitted_params}, {"bands", bj}, {"solver", f.solver}};
+                        {"fitted_params", f.fitted_params}, {"bands", bj}, {"solver", f.solver},
+                        {"params_unit", units}, {"unidentified", unid}};
     if (names.empty()) {
         names.push_back("none");
         sites.push_back("");
@@ -927,6 +953,11 @@ nlohmann::json result_json(const GapResult& R)
     }
     j["candidates"] = cj;
     j["verdict"] = fit_json(R, R.verdict, bands);
+    nlohmann::json la = nlohmann::json::array();
+    for (const GapResult::LookAlike& l : R.confidence.look_alikes)
+        la.push_back({{"effect", l.effect}, {"gap_after_total", num(l.gap)}, {"experiment", l.experiment}});
+    j["verdict"]["confidence"] = {{"first", R.confidence.first}, {"runner_up", R.confidence.runner_up},
+                                  {"margin", num(R.confidence.margin)}, {"look_alikes", la}};
     nlohmann::json bb = nlohmann::json::array();
     for (size_t b = 0; b < R.band_nrmse_before.size() && b < bands.size(); ++b)
         bb.push_back({{"band_hz", {bands[b].first, bands[b].second}}, {"nrmse", per_output(R.outputs, R.band_nrmse_before[b])}});

@@ -1,507 +1,341 @@
-// effects.cpp - the candidate effects and the augmented replay (see effects.hpp
-// and docs/gap.md for the equations).
+// effects.cpp - the catalog of candidate effects: one descriptor per effect
+// (name, parameters with units, scales, bounds and start rule, sites, the
+// terms it sets in the replay). docs/gap.md gives the equations; the replay
+// loop that uses the terms is replay.cpp.
 #include "fracdesign/gap/effects.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <stdexcept>
 
 namespace fracdesign {
 namespace gap {
 
-const std::vector<Effect>& all_effects()
+namespace {
+
+const double kBig = 1e3;
+
+std::vector<ParamInfo> per_output(const std::string& prefix, const std::vector<std::string>& outputs,
+                                  const std::vector<std::string>& units)
 {
-    static const std::vector<Effect> v = {
-        Effect::input_delay,        Effect::output_delay,    Effect::coulomb_friction, Effect::viscous_friction,
-        Effect::stribeck_friction,  Effect::backlash,        Effect::deadzone,         Effect::saturation,
-        Effect::fractional_damping, Effect::unmodelled_mode, Effect::gain_error,       Effect::sensor_offset,
-        Effect::quantization};
+    std::vector<ParamInfo> v;
+    for (size_t i = 0; i < outputs.size(); ++i)
+        v.push_back({prefix + outputs[i], i < units.size() ? units[i] : "[" + outputs[i] + "]"});
     return v;
 }
 
-std::string effect_name(Effect e)
+// Largest integer delay the grid tries: 50 samples or a 20th of the fit record.
+long delay_grid_max(const FitContext& c) { return std::max<long>(1, std::min<long>(50, c.fit_samples / 20)); }
+
+// Each compared output's model index -> value p[c], into a per-model-output vector.
+void per_model_output(const std::vector<double>& p, const std::vector<int>& compared, size_t first,
+                      std::vector<double>& out, bool absolute)
 {
-    switch (e) {
-    case Effect::input_delay: return "input_delay";
-    case Effect::output_delay: return "output_delay";
-    case Effect::coulomb_friction: return "coulomb_friction";
-    case Effect::viscous_friction: return "viscous_friction";
-    case Effect::stribeck_friction: return "stribeck_friction";
-    case Effect::backlash: return "backlash";
-    case Effect::deadzone: return "deadzone";
-    case Effect::saturation: return "saturation";
-    case Effect::fractional_damping: return "fractional_damping";
-    case Effect::unmodelled_mode: return "unmodelled_mode";
-    case Effect::gain_error: return "gain_error";
-    case Effect::sensor_offset: return "sensor_offset";
-    case Effect::quantization: return "quantization";
-    }
-    return "?";
+    for (size_t c = 0; c < compared.size(); ++c)
+        out[size_t(compared[c])] = absolute ? std::fabs(p[first + c]) : p[first + c];
 }
+
+const std::vector<EffectDescriptor>& catalog();
+
+}  // namespace
+
+// Accessors for the compared outputs of a replay set-up (replay.cpp defines ReplaySetup).
+const std::vector<int>& replay_compared(const ReplaySetup& s);
+double replay_Ts(const ReplaySetup& s);
+
+namespace {
+
+const std::vector<EffectDescriptor>& catalog()
+{
+    static const std::vector<EffectDescriptor> v = {
+        {Effect::input_delay, "input_delay", "u(t - d) at every plant input (d real: interpolated between samples)", false,
+         {Site::force_input},
+         "a closed-loop record, or several outputs with their own sensors (an input delay moves every output and, in a loop, the loop's dynamics; an output delay only its sensor's reading)",
+         [](const std::vector<std::string>&, const Units&, Site) { return std::vector<ParamInfo>{{"delay_s", "s"}}; },
+         [](const FitContext& c, Site) {
+             // The integer grid gives the starts, the solver refines the best three.
+             EffectSetup s{Effect::input_delay, Site::force_input, {}, {}, true};
+             const long dmax = delay_grid_max(c);
+             s.spec = {{c.Ts, 0, double(dmax + 1), false}};
+             for (long d = 1; d <= dmax; ++d) s.starts.push_back({double(d)});
+             return s;
+         },
+         [](const std::vector<double>& p, Site, const ReplaySetup& s, ReplayTerms& t) {
+             t.din = std::max(0.0, p[0] / replay_Ts(s));
+         }},
+        {Effect::output_delay, "output_delay", "y_c(t - d_c), one delay per compared output", false, {Site::force_input},
+         "a closed-loop record, or several outputs with their own sensors (an input delay moves every output and, in a loop, the loop's dynamics; an output delay only its sensor's reading)",
+         [](const std::vector<std::string>& o, const Units&, Site) {
+             return per_output("delay_s_", o, std::vector<std::string>(o.size(), "s"));
+         },
+         [](const FitContext& c, Site) {
+             // Every output delayed alike and, with several outputs, each one alone.
+             EffectSetup s{Effect::output_delay, Site::force_input, {}, {}, true};
+             const size_t ny = c.Sy.size();
+             const long dmax = delay_grid_max(c);
+             for (size_t i = 0; i < ny; ++i) s.spec.push_back({c.Ts, 0, double(dmax + 1), false});
+             for (long d = 1; d <= dmax; ++d) {
+                 s.starts.push_back(std::vector<double>(ny, double(d)));
+                 for (size_t i = 0; ny > 1 && i < ny; ++i) {
+                     std::vector<double> st(ny, 0.0);
+                     st[i] = double(d);
+                     s.starts.push_back(st);
+                 }
+             }
+             return s;
+         },
+         [](const std::vector<double>& p, Site, const ReplaySetup& s, ReplayTerms& t) {
+             const std::vector<int>& cmp = replay_compared(s);
+             for (size_t c = 0; c < cmp.size(); ++c) {
+                 const double d = std::max(0.0, p[c] / replay_Ts(s));
+                 t.dout[size_t(cmp[c])] = d;
+                 t.dout_max = std::max(t.dout_max, int(d));
+             }
+         }},
+        {Effect::coulomb_friction, "coulomb_friction", "F = Fc sgn(v) + offset (discrete stick-slip)", true,
+         {Site::force_input}, "moves in both directions, with standstills",
+         [](const std::vector<std::string>&, const Units& u, Site) {
+             return std::vector<ParamInfo>{{"Fc", u.u}, {"offset", u.u}};
+         },
+         [](const FitContext& c, Site) {
+             return EffectSetup{Effect::coulomb_friction, Site::force_input,
+                                {{c.Su, 0, kBig, false}, {c.Su, -kBig, kBig, false}}, {{0.05, 0.0}, {0.3, 0.0}}, false};
+         },
+         [](const std::vector<double>& p, Site, const ReplaySetup&, ReplayTerms& t) {
+             t.Fc = p[0];
+             t.Foff = p[1];
+         }},
+        {Effect::viscous_friction, "viscous_friction", "F = Fv v", true, {Site::force_input},
+         "moves at several constant speeds",
+         [](const std::vector<std::string>&, const Units& u, Site) {
+             return std::vector<ParamInfo>{{"Fv", u.u + "/(" + u.v + ")"}};
+         },
+         [](const FitContext& c, Site) {
+             return EffectSetup{Effect::viscous_friction, Site::force_input, {{c.Su / c.Sv, -kBig, kBig, false}}, {{0.1}}, false};
+         },
+         [](const std::vector<double>& p, Site, const ReplaySetup&, ReplayTerms& t) { t.Fv = p[0]; }},
+        {Effect::stribeck_friction, "stribeck_friction", "F = (Fc + (Fs - Fc) exp(-(v/vs)^2)) sgn(v)", true,
+         {Site::force_input}, "slow moves through zero velocity in both directions (speeds below vs)",
+         [](const std::vector<std::string>&, const Units& u, Site) {
+             return std::vector<ParamInfo>{{"Fc", u.u}, {"Fs", u.u}, {"vs", u.v}};
+         },
+         [](const FitContext& c, Site) {
+             return EffectSetup{Effect::stribeck_friction, Site::force_input,
+                                {{c.Su, 0, kBig, false}, {c.Su, 0, kBig, false}, {c.Sv, 1e-3, 1e2, false}},
+                                {{0.05, 0.15, 0.1}, {0.2, 0.4, 0.3}}, false};
+         },
+         [](const std::vector<double>& p, Site, const ReplaySetup&, ReplayTerms& t) {
+             // The curve falls from the static level Fs to Fc: Fs < Fc reads as Fs = Fc.
+             t.stribeck = true;
+             t.Sc = p[0];
+             t.Ss = std::max(p[1], p[0]);
+             t.Svs = std::max(std::fabs(p[2]), 1e-12);
+         }},
+        {Effect::backlash, "backlash", "a play of total width w on the force input, or in the coupling's deflection", false,
+         {Site::force_input, Site::coupling}, "small reversing moves around a standstill, load side measured",
+         [](const std::vector<std::string>&, const Units& u, Site site) {
+             return std::vector<ParamInfo>{{"width", site == Site::coupling ? u.q : u.u}};
+         },
+         [](const FitContext& c, Site site) {
+             EffectSetup s{Effect::backlash, site, {}, {}, false};
+             if (site == Site::coupling) {
+                 // Log grid of w / rms(q) from 1/4 to 64, 4 per octave (the contacts
+                 // make the cost rough in w), screened, the best 3 refined.
+                 s.spec = {{c.Sq, 0, kBig, false}};
+                 for (double w = 0.25; w <= 64.0; w *= std::pow(2.0, 0.25)) s.starts.push_back({w});
+                 s.screen = true;
+             } else {
+                 s.spec = {{c.Su, 0, kBig, false}};
+                 s.starts = {{0.02}, {0.1}, {0.4}};
+             }
+             return s;
+         },
+         [](const std::vector<double>& p, Site site, const ReplaySetup&, ReplayTerms& t) {
+             (site == Site::coupling ? t.cbl : t.bl) = std::fabs(p[0]);
+         }},
+        {Effect::deadzone, "deadzone", "u - sgn(u) h where |u| > h, else 0", false, {Site::force_input},
+         "a slow command ramp through zero",
+         [](const std::vector<std::string>&, const Units& u, Site) { return std::vector<ParamInfo>{{"half_width", u.u}}; },
+         [](const FitContext& c, Site) {
+             return EffectSetup{Effect::deadzone, Site::force_input, {{c.Su, 0, kBig, false}}, {{0.02}, {0.1}, {0.4}}, false};
+         },
+         [](const std::vector<double>& p, Site, const ReplaySetup&, ReplayTerms& t) { t.dz = std::fabs(p[0]); }},
+        {Effect::saturation, "saturation", "clamp(u, -L, L)", false, {Site::force_input}, "commands up to and beyond the limit",
+         [](const std::vector<std::string>&, const Units& u, Site) { return std::vector<ParamInfo>{{"limit", u.u}}; },
+         [](const FitContext& c, Site) {
+             return EffectSetup{Effect::saturation, Site::force_input, {{c.umax, 0.02, 2.0, false}}, {{0.5}, {0.8}, {0.95}}, false};
+         },
+         [](const std::vector<double>& p, Site, const ReplaySetup&, ReplayTerms& t) {
+             t.sat = std::max(std::fabs(p[0]), 1e-12);
+         }},
+        {Effect::fractional_damping, "fractional_damping",
+         "c D^alpha v to ground (Grunwald-Letnikov of order alpha - 1 on v), or c D^alpha q in parallel with the coupling's spring",
+         true, {Site::force_input, Site::coupling}, "a frequency sweep through the flexible mode (its damping and phase)",
+         [](const std::vector<std::string>&, const Units& u, Site site) {
+             return std::vector<ParamInfo>{
+                 {"c", site == Site::coupling ? u.u + " s^alpha/(" + u.q + ")" : u.u + " s^(alpha-1)/(" + u.v + ")"},
+                 {"alpha", "1"}};
+         },
+         [](const FitContext& c, Site site) {
+             EffectSetup s{Effect::fractional_damping, site, {}, {}, false};
+             if (site == Site::coupling) {
+                 // c normalized by k Ts^0.5; alpha 0.3, 0.5, 0.7 at two levels of c, screened.
+                 s.spec = {{c.kq * std::sqrt(c.Ts), 0, kBig, false}, {1.0, 0.05, 0.95, false}};
+                 for (double a : {0.3, 0.5, 0.7})
+                     for (double g : {0.03, 0.3}) s.starts.push_back({g, a});
+                 s.screen = true;
+             } else {
+                 s.spec = {{c.Su / c.Sv, -kBig, kBig, false}, {1.0, 0.05, 0.95, false}};
+                 s.starts = {{0.1, 0.3}, {0.1, 0.7}};
+             }
+             return s;
+         },
+         [](const std::vector<double>& p, Site site, const ReplaySetup&, ReplayTerms& t) {
+             if (site == Site::coupling) {
+                 t.cfrac = true;
+                 t.cfc = p[0];
+                 t.calpha = p[1];
+             } else {
+                 t.fractional = true;
+                 t.fc = p[0];
+                 t.alpha = p[1];
+             }
+         }},
+        {Effect::unmodelled_mode, "unmodelled_mode",
+         "eta'' + 2 zeta w eta' + w^2 eta = w^2 u; outputs see g_c eta'/w (a resonance without static gain)", false,
+         {Site::force_input}, "a frequency sweep over the band where the residual peaks",
+         [](const std::vector<std::string>& o, const Units& u, Site) {
+             std::vector<ParamInfo> v = {{"f_hz", "Hz"}, {"zeta", "1"}};
+             std::vector<std::string> gu;
+             for (size_t i = 0; i < o.size(); ++i) gu.push_back((i < u.y.size() ? u.y[i] : "[" + o[i] + "]") + "/(" + u.u + ")");
+             for (const ParamInfo& g : per_output("gain_", o, gu)) v.push_back(g);
+             return v;
+         },
+         [](const FitContext& c, Site) {
+             EffectSetup s{Effect::unmodelled_mode, Site::force_input, {}, {}, true};
+             const size_t ny = c.Sy.size();
+             const double flo = std::max(2.0 / c.fit_seconds, 1e-3), fhi = 0.25 / c.Ts;
+             // zeta <= 0.5: a resonant mode, not an extra first-order lag.
+             s.spec = {{1.0, flo, fhi, false}, {1.0, 0.005, 0.5, false}};
+             for (size_t i = 0; i < ny; ++i) s.spec.push_back({c.Sy[i] / c.Su, -kBig, kBig, false});
+             // Starts: the largest peaks of the nominal residual spectrum and a
+             // log grid of 6 per decade over the band, screened by cost; gains
+             // start at 0.1 std(y)/rms(u) (with 0 the screen could not rank them).
+             std::vector<double> fs = c.residual_peaks_hz;
+             for (double f = flo; f <= fhi; f *= std::pow(10.0, 1.0 / 6.0)) fs.push_back(f);
+             for (double f : fs) {
+                 if (f < flo || f > fhi) continue;
+                 std::vector<double> st = {f, 0.05};
+                 st.resize(2 + ny, 0.1);
+                 s.starts.push_back(st);
+             }
+             return s;
+         },
+         [](const std::vector<double>& p, Site, const ReplaySetup& s, ReplayTerms& t) {
+             t.mode = true;
+             t.f_hz = p[0];
+             t.zeta = p[1];
+             per_model_output(p, replay_compared(s), 2, t.mode_gain, false);
+         }},
+        {Effect::gain_error, "gain_error", "g u", false, {Site::force_input}, "a slow ramp of the command at steady speed",
+         [](const std::vector<std::string>&, const Units&, Site) { return std::vector<ParamInfo>{{"gain", "1"}}; },
+         [](const FitContext&, Site) {
+             return EffectSetup{Effect::gain_error, Site::force_input, {{1.0, 0.05, 20.0, false}}, {{1.0}, {0.7}, {1.4}}, false};
+         },
+         [](const std::vector<double>& p, Site, const ReplaySetup&, ReplayTerms& t) { t.gain = p[0]; }},
+        {Effect::sensor_offset, "sensor_offset", "y_c + o_c", false, {Site::force_input},
+         "a record that starts at rest (gap.initial_state at_rest)",
+         [](const std::vector<std::string>& o, const Units& u, Site) { return per_output("offset_", o, u.y); },
+         [](const FitContext& c, Site) {
+             EffectSetup s{Effect::sensor_offset, Site::force_input, {}, {}, false};
+             for (double sy : c.Sy) s.spec.push_back({sy, -kBig, kBig, false});
+             s.starts = {std::vector<double>(c.Sy.size(), 0.0)};
+             return s;
+         },
+         [](const std::vector<double>& p, Site, const ReplaySetup& s, ReplayTerms& t) {
+             per_model_output(p, replay_compared(s), 0, t.offset, false);
+         }},
+        {Effect::quantization, "quantization", "q_c round(y_c / q_c), compared by cells", false, {Site::force_input},
+         "slow moves with little noise",
+         [](const std::vector<std::string>& o, const Units& u, Site) { return per_output("step_", o, u.y); },
+         [](const FitContext& c, Site) {
+             // The lattice step of each output's data where it is coarser than
+             // the noise (0: not quantized); no start when none is.
+             EffectSetup s{Effect::quantization, Site::force_input, {}, {}, false};
+             bool any = false;
+             std::vector<double> one;
+             for (size_t i = 0; i < c.Sy.size(); ++i) {
+                 s.spec.push_back({1.0, 0, 1e300, true});
+                 one.push_back(c.quant_step[i]);
+                 any = any || c.quant_step[i] > 0;
+             }
+             if (any) s.starts = {one};
+             return s;
+         },
+         [](const std::vector<double>& p, Site, const ReplaySetup& s, ReplayTerms& t) {
+             per_model_output(p, replay_compared(s), 0, t.step, true);
+         }},
+    };
+    return v;
+}
+
+}  // namespace
+
+const EffectDescriptor& descriptor(Effect e)
+{
+    for (const EffectDescriptor& d : catalog())
+        if (d.kind == e) return d;
+    throw std::logic_error("effect without a descriptor");
+}
+
+const std::vector<Effect>& all_effects()
+{
+    static const std::vector<Effect> v = [] {
+        std::vector<Effect> k;
+        for (const EffectDescriptor& d : catalog()) k.push_back(d.kind);
+        return k;
+    }();
+    return v;
+}
+
+std::string effect_name(Effect e) { return descriptor(e).name; }
 
 Effect effect_from_name(const std::string& name)
 {
-    for (Effect e : all_effects())
-        if (effect_name(e) == name) return e;
-    throw std::invalid_argument("unknown effect '" + name + "'");
+    for (const EffectDescriptor& d : catalog())
+        if (d.name == name) return d.kind;
+    std::string known;
+    for (const EffectDescriptor& d : catalog()) known += std::string(known.empty() ? "" : ", ") + d.name;
+    throw std::invalid_argument("unknown effect '" + name + "' (known: " + known + ")");
 }
 
-bool coupling_capable(Effect e) { return e == Effect::backlash || e == Effect::fractional_damping; }
+bool needs_velocity(Effect e) { return descriptor(e).needs_velocity; }
 
-bool needs_velocity(Effect e)
+bool coupling_capable(Effect e)
 {
-    return e == Effect::coulomb_friction || e == Effect::viscous_friction || e == Effect::stribeck_friction ||
-           e == Effect::fractional_damping;
+    const std::vector<Site>& s = descriptor(e).sites;
+    return std::find(s.begin(), s.end(), Site::coupling) != s.end();
 }
 
 std::vector<std::string> param_names(Effect e, const std::vector<std::string>& outputs)
 {
-    auto per_output = [&](const std::string& prefix) {
-        std::vector<std::string> v;
-        for (const std::string& o : outputs) v.push_back(prefix + o);
-        return v;
-    };
-    switch (e) {
-    case Effect::input_delay: return {"delay_s"};
-    case Effect::output_delay: return per_output("delay_s_");
-    case Effect::coulomb_friction: return {"Fc", "offset"};
-    case Effect::viscous_friction: return {"Fv"};
-    case Effect::stribeck_friction: return {"Fc", "Fs", "vs"};
-    case Effect::backlash: return {"width"};
-    case Effect::deadzone: return {"half_width"};
-    case Effect::saturation: return {"limit"};
-    case Effect::fractional_damping: return {"c", "alpha"};
-    case Effect::unmodelled_mode: {
-        std::vector<std::string> v = {"f_hz", "zeta"};
-        for (const std::string& g : per_output("gain_")) v.push_back(g);
-        return v;
-    }
-    case Effect::gain_error: return {"gain"};
-    case Effect::sensor_offset: return per_output("offset_");
-    case Effect::quantization: return per_output("step_");
-    }
-    return {};
+    std::vector<std::string> v;
+    for (const ParamInfo& p : descriptor(e).params(outputs, Units(), Site::force_input)) v.push_back(p.name);
+    return v;
 }
 
-ReplaySetup make_replay_setup(const NominalModel& m, const Signals& data, const std::vector<std::string>& inputs,
-                              const std::vector<std::string>& outputs)
+Units model_units(const NominalModel& m, const std::vector<std::string>& outputs)
 {
-    ReplaySetup s;
-    s.model = &m;
-    const Eigen::Index N = data.samples();
-    std::vector<std::string> drive = m.closed_loop ? m.loop.references : m.inputs;
-    const std::string what = m.closed_loop ? "references" : "inputs";
-    if (!inputs.empty()) {
-        if (inputs.size() != drive.size())
-            throw std::runtime_error("model/data mismatch: --inputs names " + std::to_string(inputs.size()) +
-                                     " columns but the model has " + std::to_string(drive.size()) + " " + what);
-        drive = inputs;
-    }
-    for (const std::string& d : drive)
-        if (!data.has(d))
-            throw std::runtime_error("model/data mismatch: the model's " + what.substr(0, what.size() - 1) + " '" + d +
-                                     "' is not a column of " + data.source);
-    std::vector<std::string> exo_names = drive;
-    if (m.closed_loop)
-        for (const std::string& a : m.loop.additive) exo_names.push_back(a);
-    s.exo = Eigen::MatrixXd::Zero(N, Eigen::Index(exo_names.size()));
-    for (size_t j = 0; j < exo_names.size(); ++j)
-        if (data.has(exo_names[j])) s.exo.col(Eigen::Index(j)) = data.col(exo_names[j]);
-    for (const std::string& o : outputs) {
-        const int i = m.output_index(o);
-        if (i < 0) throw std::runtime_error("model/data mismatch: '" + o + "' is not an output of the model");
-        if (!data.has(o)) throw std::runtime_error("model/data mismatch: output '" + o + "' is not a column of " + data.source);
-        s.compared.push_back(i);
-    }
-    s.measured.resize(N, Eigen::Index(outputs.size()));
-    for (size_t c = 0; c < outputs.size(); ++c) s.measured.col(Eigen::Index(c)) = data.col(outputs[c]);
-    if (s.compared.empty()) throw std::runtime_error("model/data mismatch: no model output is a column of " + data.source);
-    // Initial state: least squares through the first measured sample.
-    Eigen::MatrixXd Cc(s.compared.size(), m.A.rows());
-    Eigen::VectorXd y0(s.compared.size());
-    for (size_t i = 0; i < s.compared.size(); ++i) {
-        Cc.row(Eigen::Index(i)) = m.C.row(s.compared[i]);
-        y0(Eigen::Index(i)) = data.col(outputs[i])(0);
-    }
-    s.x0 = Cc.completeOrthogonalDecomposition().solve(y0);
-    if (m.closed_loop) {
-        // Controller state in steady state with the first reference and measurement, when one exists.
-        const Eigen::Index nc = m.loop.Ac.rows();
-        Eigen::VectorXd w(m.loop.Bc.cols());
-        for (size_t j = 0; j < m.loop.references.size(); ++j) w(Eigen::Index(j)) = s.exo(0, Eigen::Index(j));
-        for (size_t j = 0; j < m.loop.measured.size(); ++j)
-            w(Eigen::Index(m.loop.references.size() + j)) = m.C.row(m.loop.measured[j]).dot(s.x0);
-        s.xc0 = Eigen::VectorXd::Zero(nc);
-        if (nc > 0) {
-            const Eigen::MatrixXd IA = Eigen::MatrixXd::Identity(nc, nc) - m.loop.Ac;
-            Eigen::FullPivLU<Eigen::MatrixXd> lu(IA);
-            if (lu.isInvertible()) s.xc0 = lu.solve(m.loop.Bc * w);
-        }
-    }
-    return s;
-}
-
-namespace {
-
-// Ring buffer holding the last `len` vectors of dimension `dim`.
-struct History {
-    std::vector<double> buf;
-    int dim = 0, len = 0, head = 0;
-    void init(int d, int l, const double* fill)
-    {
-        dim = d;
-        len = std::max(l, 1);
-        buf.assign(size_t(dim) * size_t(len), 0.0);
-        for (int i = 0; i < len; ++i) std::copy(fill, fill + dim, buf.begin() + long(i) * dim);
-        head = 0;
-    }
-    void push(const double* x)
-    {
-        std::copy(x, x + dim, buf.begin() + long(head) * dim);
-        head = (head + 1) % len;
-    }
-    // Value pushed `lag` pushes ago (lag 1 = the latest).
-    const double* lagged(int lag) const { return &buf[size_t(((head - lag) % len + len) % len) * size_t(dim)]; }
-};
-
-double tanh_sign(double v, double eps) { return std::tanh(v / eps); }
-
-}  // namespace
-
-ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effects, Eigen::Index n)
-{
-    const NominalModel& m = *s.model;
-    const Eigen::Index N = n < 0 ? s.samples() : std::min(n, s.samples());
-    const int nx = int(m.A.rows()), nu = int(m.B.cols()), ny = int(m.C.rows());
-    const int ncmp = int(s.compared.size()), fi = m.force_input;
-    const double Ts = m.Ts, inf = std::numeric_limits<double>::infinity();
-
-    // Effect parameters (absent effects leave the nominal unchanged).
-    // Delays in samples, real: d = n + f reads (1 - f) x(k - n) + f x(k - n - 1)
-    // (linear interpolation between samples, so that a delay between two
-    // samples, e.g. of a sample-and-hold, is not rounded to one of them).
-    double din = 0;
-    int dout_max = 0;
-    std::vector<double> dout(size_t(ny), 0.0);
-    double Fc = 0, Foff = 0, Fv = 0, Sc = 0, Ss = 0, Svs = 1, bl = -1, dz = 0, sat = inf, fc = 0, alpha = 0.5, gain = 1;
-    bool stribeck = false, fractional = false, mode = false;
-    // In the coupling: play width (< 0: none), c and alpha of c D^alpha.
-    double cbl = -1, cfc = 0, calpha = 0.5;
-    bool cfrac = false;
-    double f_hz = 1, zeta = 0.1;
-    std::vector<double> mode_gain(size_t(ny), 0.0), offset(size_t(ny), 0.0), step(size_t(ny), 0.0);
-    for (const EffectInstance& e : effects) {
-        const std::vector<double>& p = e.params;
-        switch (e.kind) {
-        case Effect::input_delay: din = std::max(0.0, p[0] / Ts); break;
-        case Effect::output_delay:
-            for (int c = 0; c < ncmp; ++c) {
-                const double d = std::max(0.0, p[size_t(c)] / Ts);
-                dout[size_t(s.compared[size_t(c)])] = d;
-                dout_max = std::max(dout_max, int(d));
-            }
-            break;
-        case Effect::coulomb_friction: Fc = p[0]; Foff = p[1]; break;
-        case Effect::viscous_friction: Fv = p[0]; break;
-        case Effect::stribeck_friction:
-            // The Stribeck curve falls from the static level Fs to Fc: Fs < Fc reads as Fs = Fc.
-            stribeck = true; Sc = p[0]; Ss = std::max(p[1], p[0]); Svs = std::max(std::fabs(p[2]), 1e-12);
-            break;
-        case Effect::backlash:
-            (e.site == Site::coupling ? cbl : bl) = std::fabs(p[0]);
-            break;
-        case Effect::deadzone: dz = std::fabs(p[0]); break;
-        case Effect::saturation: sat = std::max(std::fabs(p[0]), 1e-12); break;
-        case Effect::fractional_damping:
-            if (e.site == Site::coupling) {
-                cfrac = true; cfc = p[0]; calpha = p[1];
-            } else {
-                fractional = true; fc = p[0]; alpha = p[1];
-            }
-            break;
-        case Effect::unmodelled_mode:
-            mode = true; f_hz = p[0]; zeta = p[1];
-            for (int c = 0; c < ncmp; ++c) mode_gain[size_t(s.compared[size_t(c)])] = p[size_t(2 + c)];
-            break;
-        case Effect::gain_error: gain = p[0]; break;
-        case Effect::sensor_offset:
-            for (int c = 0; c < ncmp; ++c) offset[size_t(s.compared[size_t(c)])] = p[size_t(c)];
-            break;
-        case Effect::quantization:
-            for (int c = 0; c < ncmp; ++c) step[size_t(s.compared[size_t(c)])] = std::fabs(p[size_t(c)]);
-            break;
-        }
-    }
-
-    // Velocity row, and the velocity one step ahead: v(k+1) = cvA x(k) + cvB u(k).
-    std::vector<double> cv(size_t(nx), 0.0), cvA(size_t(nx), 0.0), cvB(size_t(nu), 0.0);
-    if (m.velocity >= 0) {
-        for (int j = 0; j < nx; ++j) {
-            cv[size_t(j)] = m.C(m.velocity, j);
-            for (int i = 0; i < nx; ++i) cvA[size_t(j)] += m.C(m.velocity, i) * m.A(i, j);
-        }
-        for (int l = 0; l < nu; ++l)
-            for (int i = 0; i < nx; ++i) cvB[size_t(l)] += m.C(m.velocity, i) * m.B(i, l);
-    }
-    const double bv = cvB[size_t(fi)];
-    const double eps = s.eps_velocity;
-    // Mode: eta'' + 2 zeta w eta' + w^2 eta = w^2 u, discretised with zero-order
-    // hold; the outputs see g eta'/w, a resonance with no static gain (a static
-    // gain change is gain_error's job), peak g/(2 zeta) at w.
-    Eigen::Matrix2d Am = Eigen::Matrix2d::Identity();
-    Eigen::Vector2d Bm = Eigen::Vector2d::Zero();
-    const double mode_w = 2 * M_PI * std::max(f_hz, 1e-6);
-    if (mode) {
-        const double w = mode_w;
-        Eigen::MatrixXd Ac(2, 2), Bc(2, 1), Ad, Bd;
-        Ac << 0, 1, -w * w, -2 * zeta * w;
-        Bc << 0, w * w;
-        zoh(Ac, Bc, Ts, Ad, Bd);
-        Am = Ad;
-        Bm = Bd.col(0);
-    }
-    // Grunwald-Letnikov weights of order alpha - 1 applied to v (= D^alpha of the position).
-    std::vector<double> glw;
-    double glscale = 0.0;
-    if (fractional) {
-        glw.resize(size_t(std::max(s.fractional_memory, 1)));
-        glw[0] = 1.0;
-        for (size_t j = 1; j < glw.size(); ++j) glw[j] = glw[j - 1] * (1.0 - alpha / double(j));
-        glscale = std::pow(Ts, 1.0 - alpha);
-    }
-
-    // Coupling (gap.coupling): the real spring's torque minus the nominal's,
-    //   D = -k clamp(q, -w/2, w/2)        (play of width w: k dz(q) - k q)
-    //     + c D^alpha q                   (Grunwald-Letnikov of order alpha on q).
-    // The fractional term is evaluated at mid-sample, q = (q(k) + q(k+1))/2
-    // with the nominal q(k+1), and held over the sample. The play is applied
-    // on sub-steps of the coupling's state block (nominal.hpp, Coupling),
-    // each an implicit trapezoid D(q at mid-sub-step) solved by fixed-point
-    // iteration (contraction |twist . torque_m| k/2). One explicit step per
-    // 1.2 ms sample misses the gap-bench gear's contacts completely (its
-    // free play gets a spurious eigenvalue of 0.944 per step); one implicit
-    // step leaves 40 % of the effect as error, 8 sub-steps 3 % (driven by the
-    // recorded torque, against RK4 with 32 sub-steps per sample).
-    const bool coupled = m.has_coupling;
-    const Coupling* cp = coupled ? &m.coupling : nullptr;
-    const double ck = coupled ? cp->stiffness : 0.0;
-    const double ctb = coupled ? cp->twist_s.dot(cp->torque_m) : 0.0;
-    const Eigen::Index ns = coupled ? Eigen::Index(cp->states.size()) : 0;
-    Eigen::VectorXd zs(ns), zp(ns), gs(ns), drive(ns);
-    std::vector<double> cglw, chist;
-    int chead = 0;
-    double cglscale = 1.0;
-    if (cfrac) {
-        cglw.resize(size_t(std::max(s.fractional_memory, 1)));
-        cglw[0] = 1.0;
-        for (size_t j = 1; j < cglw.size(); ++j) cglw[j] = cglw[j - 1] * (1.0 - (calpha + 1.0) / double(j));
-        cglscale = std::pow(Ts, -calpha);
-        chist.assign(cglw.size(), 0.0);
-    }
-    // The fractional term's sum over the history (the newest entry excluded).
-    // Deflection twist . x of a plant state.
-    auto twist_of = [&](const std::vector<double>& xs) {
-        double q = 0;
-        for (int j = 0; j < nx; ++j) q += cp->twist(j) * xs[size_t(j)];
-        return q;
+    auto unit_of = [&](const std::string& name) {
+        const auto it = m.units.find(name);
+        return it != m.units.end() ? it->second : "[" + name + "]";
     };
-    auto chist_sum = [&]() {
-        double acc = 0;
-        const int L = int(chist.size());
-        for (int j = 1; j < L; ++j) acc += cglw[size_t(j)] * chist[size_t(((chead - j) % L + L) % L)];
-        return acc;
-    };
-
-    ReplayTrace tr;
-    tr.y.resize(N, ncmp);
-    tr.twist = Eigen::VectorXd::Zero(N);
-    tr.u.resize(N);
-    tr.v.resize(N);
-    std::vector<double> x(s.x0.data(), s.x0.data() + nx), xn(static_cast<size_t>(nx));
-    std::vector<double> xc(s.xc0.data(), s.xc0.data() + s.xc0.size()), xcn(xc.size());
-    const int ncs = int(xc.size());
-    std::vector<double> ytrue(static_cast<size_t>(ny)), ysens(static_cast<size_t>(ny)), yraw(static_cast<size_t>(ny)),
-        u(static_cast<size_t>(nu)),
-        up(static_cast<size_t>(nu));
-    std::vector<double> w(m.closed_loop ? static_cast<size_t>(m.loop.Bc.cols()) : 0), cvec(static_cast<size_t>(nu));
-    double eta[2] = {0, 0};
-    double bl_out = 0.0;
-    History h_out, h_in, h_ctl;
-    std::vector<double> vel_hist;
-    int vel_head = 0;
-    if (fractional) vel_hist.assign(glw.size(), 0.0);
-    const int nr = m.closed_loop ? int(m.loop.references.size()) : 0;
-
-    auto plant_outputs = [&](bool with_d) {
-        for (int i = 0; i < ny; ++i) {
-            double acc = 0;
-            for (int j = 0; j < nx; ++j) acc += m.C(i, j) * x[size_t(j)];
-            if (with_d)
-                for (int j = 0; j < nu; ++j) acc += m.D(i, j) * up[size_t(j)];
-            ytrue[size_t(i)] = acc + mode_gain[size_t(i)] * eta[1] / mode_w;
-        }
-        if (h_out.len == 0) h_out.init(ny, dout_max + 2, ytrue.data());
-        h_out.push(ytrue.data());
-        for (int i = 0; i < ny; ++i) {
-            const int n = int(dout[size_t(i)]);
-            const double f = dout[size_t(i)] - n;
-            double y = (1 - f) * h_out.lagged(n + 1)[i] + (f > 0 ? f * h_out.lagged(n + 2)[i] : 0.0) + offset[size_t(i)];
-            yraw[size_t(i)] = y;
-            if (step[size_t(i)] > 0) y = step[size_t(i)] * std::round(y / step[size_t(i)]);
-            ysens[size_t(i)] = y;
-        }
-    };
-    auto input_path = [&](double v) {
-        if (h_in.len == 0) h_in.init(nu, int(din) + 2, u.data());
-        h_in.push(u.data());
-        const int n = int(din);
-        const double fr = din - n;
-        for (int j = 0; j < nu; ++j) up[size_t(j)] = (1 - fr) * h_in.lagged(n + 1)[j] + (fr > 0 ? fr * h_in.lagged(n + 2)[j] : 0.0);
-        double a = gain * up[size_t(fi)];
-        a = std::min(std::max(a, -sat), sat);
-        if (dz > 0) a = std::fabs(a) <= dz ? 0.0 : a - std::copysign(dz, a);
-        if (bl >= 0) {
-            bl_out = std::min(std::max(bl_out, a - 0.5 * bl), a + 0.5 * bl);
-            a = bl_out;
-        }
-        up[size_t(fi)] = a;
-        double f = 0.0;
-        if (m.velocity >= 0) {
-            f = Foff + Fv * v;
-            if (fractional) {
-                vel_hist[size_t(vel_head)] = v;
-                double acc = 0;
-                const int L = int(vel_hist.size());
-                for (int j = 0; j < L; ++j) acc += glw[size_t(j)] * vel_hist[size_t(((vel_head - j) % L + L) % L)];
-                vel_head = (vel_head + 1) % L;
-                f += fc * acc / glscale;
-            }
-            // Dry friction of level L(v) (Coulomb, plus the Stribeck curve),
-            // discrete stick-slip: the force is the one that stops the
-            // velocity within this step, limited to +-L(v); so sliding gets
-            // L sign(v) exactly and sticking holds without chattering.
-            double level = Fc;
-            if (stribeck) level += Sc + (Ss - Sc) * std::exp(-(v / Svs) * (v / Svs));
-            if (level != 0.0) {
-                if (bv != 0.0) {
-                    double vfree = -bv * f;
-                    for (int j = 0; j < nx; ++j) vfree += cvA[size_t(j)] * x[size_t(j)];
-                    for (int l = 0; l < nu; ++l) vfree += cvB[size_t(l)] * up[size_t(l)];
-                    const double stop = vfree / bv, lv = std::fabs(level);
-                    f += std::min(std::max(stop, -lv), lv);
-                } else {
-                    f += level * tanh_sign(v, eps);
-                }
-            }
-        }
-        up[size_t(fi)] = a - f;
-    };
-
-    for (Eigen::Index k = 0; k < N; ++k) {
-        double v = 0;
-        for (int j = 0; j < nx; ++j) v += cv[size_t(j)] * x[size_t(j)];
-        if (m.closed_loop) {
-            plant_outputs(false);
-            for (int j = 0; j < nr; ++j) w[size_t(j)] = s.exo(k, j);
-            for (size_t j = 0; j < m.loop.measured.size(); ++j) w[size_t(nr) + j] = ysens[size_t(m.loop.measured[j])];
-            for (int i = 0; i < nu; ++i) {
-                double acc = 0;
-                for (int j = 0; j < ncs; ++j) acc += m.loop.Cc(i, j) * xc[size_t(j)];
-                for (size_t j = 0; j < w.size(); ++j) acc += m.loop.Dc(i, Eigen::Index(j)) * w[j];
-                cvec[size_t(i)] = acc;
-            }
-            for (int i = 0; i < ncs; ++i) {
-                double acc = 0;
-                for (int j = 0; j < ncs; ++j) acc += m.loop.Ac(i, j) * xc[size_t(j)];
-                for (size_t j = 0; j < w.size(); ++j) acc += m.loop.Bc(i, Eigen::Index(j)) * w[j];
-                xcn[size_t(i)] = acc;
-            }
-            xc.swap(xcn);
-            if (h_ctl.len == 0) h_ctl.init(nu, m.loop.delay_samples + 1, cvec.data());
-            h_ctl.push(cvec.data());
-            const double* cd = m.loop.delay_samples > 0 ? h_ctl.lagged(m.loop.delay_samples + 1) : cvec.data();
-            for (int i = 0; i < nu; ++i) {
-                u[size_t(i)] = std::min(std::max(cd[i], -m.loop.saturation), m.loop.saturation);
-                if (i < int(m.loop.additive.size())) u[size_t(i)] += s.exo(k, nr + i);
-            }
-            if (k == 0) bl_out = gain * u[size_t(fi)];
-            input_path(v);
-        } else {
-            for (int i = 0; i < nu; ++i) u[size_t(i)] = s.exo(k, i);
-            if (k == 0) bl_out = gain * u[size_t(fi)];
-            input_path(v);
-            plant_outputs(true);
-        }
-        for (int c = 0; c < ncmp; ++c) {
-            const size_t i = size_t(s.compared[size_t(c)]);
-            tr.y(k, c) = ysens[i];
-            // A quantizing sensor reports the cell [m - q/2, m + q/2] around
-            // its reading m: the residual is the model value's distance to
-            // that cell (zero inside it), so the trace holds m shifted by
-            // that distance (the feedback above gets the rounded value).
-            if (step[i] > 0 && k < s.measured.rows()) {
-                const double m = s.measured(k, c), h = 0.5 * step[i];
-                tr.y(k, c) = m + (yraw[i] - std::min(std::max(yraw[i], m - h), m + h));
-            }
-        }
-        tr.u(k) = up[size_t(fi)];
-        tr.v(k) = v;
-        for (int i = 0; i < nx; ++i) {
-            double acc = 0;
-            for (int j = 0; j < nx; ++j) acc += m.A(i, j) * x[size_t(j)];
-            for (int j = 0; j < nu; ++j) acc += m.B(i, j) * up[size_t(j)];
-            xn[size_t(i)] = acc;
-        }
-        if (coupled) {
-            const double q0 = twist_of(x);
-            tr.twist(k) = q0;
-            double Dfr = 0.0;
-            if (cfrac) {
-                const double qp = twist_of(xn);  // the nominal q(k+1)
-                Dfr = cfc * cglscale * (0.5 * (q0 + qp) + chist_sum());
-            }
-            if (cbl >= 0) {
-                // Sub-steps: z+ = Phi_m z + Gamma_m g + torque_m (Dfr + D), g the sample's forcing.
-                for (Eigen::Index i = 0; i < ns; ++i) {
-                    const size_t si = size_t(cp->states[size_t(i)]);
-                    zs(i) = x[si];
-                    zp(i) = xn[si];
-                }
-                zp.noalias() -= cp->Phi * zs;
-                gs.noalias() = cp->Gamma_inv * zp;
-                drive.noalias() = cp->Gamma_m * gs;
-                drive += cp->torque_m * Dfr;
-                for (int j = 0; j < cp->substeps; ++j) {
-                    zp.noalias() = cp->Phi_m * zs;
-                    zp += drive;
-                    const double a0 = cp->twist_s.dot(zs), a1 = cp->twist_s.dot(zp);
-                    double D = 0;
-                    for (int it = 0; it < 3; ++it) {
-                        const double q = 0.5 * (a0 + a1 + ctb * D);
-                        D = -ck * std::min(std::max(q, -0.5 * cbl), 0.5 * cbl);
-                    }
-                    zs = zp;
-                    zs += cp->torque_m * D;
-                }
-                for (Eigen::Index i = 0; i < ns; ++i) xn[size_t(cp->states[size_t(i)])] = zs(i);
-            } else if (cfrac) {
-                for (int i = 0; i < nx; ++i) xn[size_t(i)] += cp->torque(i) * Dfr;
-            }
-            if (cfrac) {
-                chist[size_t(chead)] = 0.5 * (q0 + twist_of(xn));
-                chead = (chead + 1) % int(chist.size());
-            }
-        }
-        x.swap(xn);
-        if (mode) {
-            const double e0 = Am(0, 0) * eta[0] + Am(0, 1) * eta[1] + Bm(0) * up[size_t(fi)];
-            const double e1 = Am(1, 0) * eta[0] + Am(1, 1) * eta[1] + Bm(1) * up[size_t(fi)];
-            eta[0] = e0;
-            eta[1] = e1;
-        }
-    }
-    return tr;
+    Units u;
+    u.u = unit_of(m.inputs[size_t(m.force_input)]);
+    if (m.velocity >= 0) u.v = unit_of(m.outputs[size_t(m.velocity)]);
+    if (m.has_coupling) u.q = m.coupling.unit.empty() ? "[" + m.coupling.name + " deflection]" : m.coupling.unit;
+    for (const std::string& o : outputs) u.y.push_back(unit_of(o));
+    return u;
 }
 
 }  // namespace gap

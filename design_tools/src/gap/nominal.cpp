@@ -201,6 +201,16 @@ NominalModel nominal_from_json(const json& doc, double Ts)
             if (m.inputs[i] == f) m.force_input = int(i);
         if (m.force_input < 0) throw std::runtime_error("model: gap.force_input names no model input");
     }
+    if (g.contains("units")) {
+        // gap.units: {"signal": "unit"} for the report and the parameters' units.
+        const json& u = g.at("units");
+        if (!u.is_object()) throw std::runtime_error("model gap.units: must be an object {\"signal\": \"unit\"}");
+        for (auto it = u.begin(); it != u.end(); ++it) {
+            if (!it.value().is_string())
+                throw std::runtime_error("model gap.units: the unit of '" + it.key() + "' must be a string");
+            m.units[it.key()] = it.value().get<std::string>();
+        }
+    }
     if (g.contains("coupling")) {
         // gap.coupling (docs/gap.md): twist row and torque column over the
         // plant states; a continuous plant's column is discretised with it.
@@ -222,6 +232,10 @@ NominalModel nominal_from_json(const json& doc, double Ts)
             return v;
         };
         m.coupling.name = cp.value("name", std::string("coupling"));
+        if (cp.contains("unit")) {
+            if (!cp.at("unit").is_string()) throw std::runtime_error(w + ": 'unit' must be a string");
+            m.coupling.unit = cp.at("unit").get<std::string>();
+        }
         m.coupling.twist = vec("twist").transpose();
         Eigen::VectorXd t = vec("torque");
         if (ss.continuous()) {

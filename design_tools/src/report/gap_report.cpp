@@ -2,12 +2,11 @@
 #include "fracdesign/report/gap_report.hpp"
 
 #include <cmath>
-#include <complex>
 #include <cstdio>
 #include <sstream>
-#include <unsupported/Eigen/FFT>
 
 #include "fracdesign/report/svg.hpp"
+#include "fracdesign/welch.hpp"
 
 namespace fracdesign {
 namespace report {
@@ -24,30 +23,36 @@ std::string g4(double v)
 
 std::vector<double> vec(const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
 
-// One-sided periodogram of x (mean removed), averaged over 8 segments.
-void residual_psd(const Eigen::VectorXd& x, double Ts, std::vector<double>& f, std::vector<double>& p)
+// Residual spectral density by the project's Welch estimator (Hamming,
+// half-overlapping segments, mean removed), with segments long enough to
+// resolve the lowest band that holds at least 1 % of the nominal residual
+// energy (r.bands): the resolution fs/nperseg is at most a tenth of that
+// band's upper edge, so the plot covers the bands the residual lives in.
+void residual_psd(const Eigen::VectorXd& x, double Ts, const std::vector<std::vector<double>>& bands,
+                  std::vector<double>& f, std::vector<double>& p)
 {
-    Eigen::Index seg = 16;  // power of two (fast FFT), about an eighth of the record
-    while (seg * 16 <= x.size()) seg *= 2;
-    Eigen::FFT<double> fft;
-    f.clear();
-    p.assign(size_t(seg / 2), 0.0);
-    int n = 0;
-    for (Eigen::Index s = 0; s + seg <= x.size(); s += seg) {
-        Eigen::VectorXd y = x.segment(s, seg);
-        y.array() -= y.mean();
-        std::vector<double> in(y.data(), y.data() + seg);
-        std::vector<std::complex<double>> X;
-        fft.fwd(X, in);
-        for (size_t k = 1; k < p.size(); ++k) p[k] += std::norm(X[k]) * Ts / double(seg);
-        ++n;
-    }
-    for (size_t k = 0; k < p.size(); ++k) {
-        f.push_back(double(k) / (double(seg) * Ts));
-        p[k] /= std::max(n, 1);
-    }
-    f.erase(f.begin());
-    p.erase(p.begin());
+    double f_need = 0.5 / Ts;
+    for (const auto& b : bands)
+        if (b[2] >= 0.01) {
+            f_need = std::min(f_need, 0.1 * b[1]);
+            break;
+        }
+    Eigen::Index seg = 16;
+    while (seg < x.size() && 1.0 / (double(seg) * Ts) > f_need) seg *= 2;
+    WelchOptions o;
+    o.fs = 1.0 / Ts;
+    o.nperseg = int(std::min<Eigen::Index>(seg, x.size()));
+    o.noverlap = o.nperseg / 2;
+    o.detrend_mean = true;
+    const WelchPsd w = welch_psd(std::vector<double>(x.data(), x.data() + x.size()), o);
+    f.assign(w.f.begin() + 1, w.f.end());
+    p.assign(w.P.begin() + 1, w.P.end());
+}
+
+// "name [unit]" for an axis.
+std::string with_unit(const gap::GapResult& r, size_t c)
+{
+    return r.outputs[c] + (c < r.units.y.size() ? " " + (r.units.y[c].front() == '[' ? r.units.y[c] : "[" + r.units.y[c] + "]") : "");
 }
 
 }  // namespace
@@ -72,12 +77,26 @@ std::string gap_report_html(const gap::GapResult& r, const nlohmann::json& j, co
     for (size_t c = 0; c < r.outputs.size(); ++c)
         o << "<tr><td class=l>" << html_escape(r.outputs[c]) << "</td><td>" << g4(r.gap_before[c]) << "</td><td>"
           << g4(c < r.verdict.gap_after.size() ? r.verdict.gap_after[c] : NAN) << "</td></tr>\n";
-    o << "</table>\n<p>Verdict parameters (&plusmn; 1 std from the Gauss-Newton covariance):</p><table><tr><th>parameter</th><th>value</th><th>std</th></tr>\n";
-    for (auto it = j["verdict"]["params"].begin(); it != j["verdict"]["params"].end(); ++it)
+    o << "</table>\n<p>Verdict parameters (&plusmn; 1 std from the Gauss-Newton covariance; a parameter the record "
+         "does not identify is marked and its std not shown):</p><table><tr><th>parameter</th><th>value</th><th>unit</th><th>std</th><th class=l>identified</th></tr>\n";
+    const auto& vj = j["verdict"];
+    for (auto it = vj["params"].begin(); it != vj["params"].end(); ++it) {
+        const bool unid = vj["unidentified"].contains(it.key());
+        const auto& sd = vj["params_std"][it.key()];
         o << "<tr><td class=l>" << html_escape(it.key()) << "</td><td>" << (it.value().is_null() ? "n/a" : g4(it.value().get<double>()))
-          << "</td><td>" << (j["verdict"]["params_std"][it.key()].is_null() ? "n/a" : g4(j["verdict"]["params_std"][it.key()].get<double>()))
-          << "</td></tr>\n";
+          << "</td><td class=l>" << html_escape(vj["params_unit"].value(it.key(), std::string())) << "</td><td>"
+          << (unid || sd.is_null() ? "" : g4(sd.get<double>())) << "</td><td class=l>"
+          << (unid ? "<b>no</b>: " + html_escape(vj["unidentified"][it.key()].get<std::string>()) : std::string("yes")) << "</td></tr>\n";
+    }
     o << "</table>\n";
+    const auto& cf = vj["confidence"];
+    if (!cf["runner_up"].get<std::string>().empty())
+        o << "<p>Confidence: score margin " << g4(cf["margin"].is_null() ? NAN : cf["margin"].get<double>()) << " to the runner-up <b>"
+          << html_escape(cf["runner_up"].get<std::string>()) << "</b>.</p>\n";
+    for (const auto& l : cf["look_alikes"])
+        o << "<p><b>Cannot tell " << html_escape(cf["first"].get<std::string>()) << " from " << html_escape(l["effect"].get<std::string>())
+          << "</b> on this record (held-out gap " << g4(l["gap_after_total"].is_null() ? NAN : l["gap_after_total"].get<double>())
+          << "): " << html_escape(l["experiment"].get<std::string>()) << ".</p>\n";
 
     // Measured vs nominal vs augmented, held-out part.
     o << "<h2>Measured vs nominal vs augmented (held-out data)</h2>\n";
@@ -87,11 +106,11 @@ std::string gap_report_html(const gap::GapResult& r, const nlohmann::json& j, co
         std::vector<Series> s = {{"measured", "#222", t, vec(r.measured.col(Eigen::Index(c)).segment(a, n))},
                                  {"nominal", "#1f77b4", t, vec(r.nominal.col(Eigen::Index(c)).segment(a, n))},
                                  {"augmented", "#d62728", t, vec(r.augmented.col(Eigen::Index(c)).segment(a, n))}};
-        o << line_chart(r.outputs[c], "t [s]", r.outputs[c], s);
+        o << line_chart(r.outputs[c], "t [s]", with_unit(r, c), s);
         std::vector<Series> e = {
             {"nominal error", "#1f77b4", t, vec(r.measured.col(Eigen::Index(c)).segment(a, n) - r.nominal.col(Eigen::Index(c)).segment(a, n))},
             {"augmented error", "#d62728", t, vec(r.measured.col(Eigen::Index(c)).segment(a, n) - r.augmented.col(Eigen::Index(c)).segment(a, n))}};
-        o << line_chart(r.outputs[c] + ": output error", "t [s]", "measured - model", e);
+        o << line_chart(r.outputs[c] + ": output error", "t [s]", "measured - model " + with_unit(r, c).substr(r.outputs[c].size() + 1), e);
     }
 
     // Residual spectra per band.
@@ -119,9 +138,10 @@ std::string gap_report_html(const gap::GapResult& r, const nlohmann::json& j, co
     }
     for (size_t c = 0; c < r.outputs.size(); ++c) {
         std::vector<double> f0, p0, f1, p1;
-        residual_psd(r.measured.col(Eigen::Index(c)).segment(a, n) - r.nominal.col(Eigen::Index(c)).segment(a, n), r.Ts, f0, p0);
-        residual_psd(r.measured.col(Eigen::Index(c)).segment(a, n) - r.augmented.col(Eigen::Index(c)).segment(a, n), r.Ts, f1, p1);
-        o << line_chart(r.outputs[c] + ": residual spectrum", "f [Hz]", "PSD",
+        residual_psd(r.measured.col(Eigen::Index(c)).segment(a, n) - r.nominal.col(Eigen::Index(c)).segment(a, n), r.Ts, r.bands, f0, p0);
+        residual_psd(r.measured.col(Eigen::Index(c)).segment(a, n) - r.augmented.col(Eigen::Index(c)).segment(a, n), r.Ts, r.bands, f1, p1);
+        const std::string u = c < r.units.y.size() ? r.units.y[c] : "[" + r.outputs[c] + "]";
+        o << line_chart(r.outputs[c] + ": residual spectrum", "f [Hz]", "PSD [(" + u + ")^2/Hz]",
                         {{"nominal", "#1f77b4", f0, p0}, {"augmented", "#d62728", f1, p1}}, {}, true, true);
     }
     if (!r.modes.empty()) {
@@ -156,8 +176,11 @@ std::string gap_report_html(const gap::GapResult& r, const nlohmann::json& j, co
         std::string ps;
         for (auto it = c["params"].begin(); it != c["params"].end(); ++it) {
             const auto& sd = c["params_std"][it.key()];
+            const bool unid = c.contains("unidentified") && c["unidentified"].contains(it.key());
+            const std::string unit = c.contains("params_unit") ? c["params_unit"].value(it.key(), std::string()) : "";
             ps += it.key() + " = " + (it.value().is_null() ? "n/a" : g4(it.value().get<double>())) +
-                  (sd.is_null() ? "" : " &plusmn; " + g4(sd.get<double>())) + "; ";
+                  (unit.empty() || unit == "1" ? "" : " " + html_escape(unit)) +
+                  (unid ? " (not identified)" : sd.is_null() ? "" : " &plusmn; " + g4(sd.get<double>())) + "; ";
         }
         o << "<tr><td class=l>" << html_escape(c["effect"].get<std::string>())
           << (c.value("site", std::string()) == "coupling" ? " (in the coupling)" : "") << "</td><td>"

@@ -9,6 +9,7 @@
 #pragma once
 #include <Eigen/Dense>
 #include <nlohmann/json.hpp>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -28,11 +29,16 @@ struct GapOptions {
     double margin = 0.05;               // forward selection: relative held-out gap reduction needed to add an effect
     int max_effects = 3;                // forward selection depth
     int max_iterations = 30;            // Ceres iterations per start (half in forward selection)
+    int threads = 0;                    // workers for the independent single fits (0: one per core); results do not depend on it
+    std::function<void(const std::string&)> progress;  // one line per finished fit (the CLI prints them on stderr)
 };
 
 struct FitReport {
     std::vector<EffectInstance> effects;
     std::vector<std::vector<double>> stddev;  // per effect, per parameter (NaN where not estimable)
+    // Per effect, per parameter: why the data do not identify it ("" when they
+    // do): its std exceeds its value, it sits at a bound, or no std exists.
+    std::vector<std::vector<std::string>> unidentified;
     std::vector<double> gap_after;            // nrmse per compared output, held-out
     double gap = 0.0;                         // aggregate held-out gap sqrt(mean nrmse^2)
     double shrink = 0.0;                      // 1 - gap / gap_before
@@ -59,6 +65,7 @@ struct GapResult {
     std::string model_name, data_source, eval_source;
     double Ts = 0.0;
     std::vector<std::string> outputs;
+    Units units;                                    // of the model's signals (gap.units)
     Eigen::Index fit_samples = 0, eval_first = 0, eval_samples = 0;
     std::vector<double> gap_before;                 // nrmse per output, held-out
     double gap_before_total = 0.0;
@@ -68,6 +75,20 @@ struct GapResult {
     std::vector<Window> windows;
     std::vector<FitReport> candidates;              // best first (includes "none" as an empty set)
     FitReport verdict;                              // forward selection result (empty effects: "none")
+    // The verdict's confidence: the runner-up to its first effect (or to
+    // none), their score margin, and the candidates this record cannot tell
+    // apart from the first (held-out gaps within the selection margin), each
+    // with the experiment that would separate them.
+    struct LookAlike {
+        std::string effect;
+        double gap;
+        std::string experiment;
+    };
+    struct Confidence {
+        std::string first, runner_up;
+        double margin = 0.0;  // score(first) - score(runner_up)
+        std::vector<LookAlike> look_alikes;
+    } confidence;
     std::vector<std::string> skipped;               // effects not applicable, with the reason
     // Traces for the report (evaluation record): time, measured, nominal, augmented.
     Eigen::VectorXd t;

@@ -13,6 +13,7 @@
 #pragma once
 #include <Eigen/Dense>
 #include <limits>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -47,6 +48,7 @@ struct ClosedLoop {
 // Without correction the sub-steps end exactly at the nominal x(k+1).
 struct Coupling {
     std::string name;
+    std::string unit;          // unit of the deflection (gap.coupling.unit; empty: not given)
     Eigen::RowVectorXd twist;  // 1 x n, deflection from the plant state
     Eigen::VectorXd torque;    // n, discrete at Ts: the state change per unit of extra spring torque over one sample
     double stiffness = 0.0;    // nominal spring rate, torque per unit deflection
@@ -73,6 +75,7 @@ struct NominalModel {
     int force_input = 0;   // plant input where friction, dead zone, backlash, gain and saturation act
     bool has_coupling = false;
     Coupling coupling;     // gap.coupling, when has_coupling
+    std::map<std::string, std::string> units;  // gap.units: signal name -> unit (optional, for the report)
 
     int output_index(const std::string& name) const;  // -1 if absent
     // Oscillatory and real modes of the nominal (loop closed when closed_loop,

@@ -1,0 +1,397 @@
+// replay.cpp - the replay of the nominal model augmented with effects: the
+// set-up from a record and the sample loop (effects.hpp; each effect's terms
+// come from its descriptor in effects.cpp; docs/gap.md gives the equations).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "fracdesign/gap/effects.hpp"
+
+#include "frac/fo_gl.h"
+
+namespace fracdesign {
+namespace gap {
+
+const std::vector<int>& replay_compared(const ReplaySetup& s) { return s.compared; }
+double replay_Ts(const ReplaySetup& s) { return s.model->Ts; }
+
+ReplaySetup make_replay_setup(const NominalModel& m, const Signals& data, const std::vector<std::string>& inputs,
+                              const std::vector<std::string>& outputs)
+{
+    ReplaySetup s;
+    s.model = &m;
+    const Eigen::Index N = data.samples();
+    std::vector<std::string> drive = m.closed_loop ? m.loop.references : m.inputs;
+    const std::string what = m.closed_loop ? "references" : "inputs";
+    if (!inputs.empty()) {
+        if (inputs.size() != drive.size())
+            throw std::runtime_error("model/data mismatch: --inputs names " + std::to_string(inputs.size()) +
+                                     " columns but the model has " + std::to_string(drive.size()) + " " + what);
+        drive = inputs;
+    }
+    for (const std::string& d : drive)
+        if (!data.has(d))
+            throw std::runtime_error("model/data mismatch: the model's " + what.substr(0, what.size() - 1) + " '" + d +
+                                     "' is not a column of " + data.source);
+    std::vector<std::string> exo_names = drive;
+    if (m.closed_loop)
+        for (const std::string& a : m.loop.additive) exo_names.push_back(a);
+    s.exo = Eigen::MatrixXd::Zero(N, Eigen::Index(exo_names.size()));
+    for (size_t j = 0; j < exo_names.size(); ++j)
+        if (data.has(exo_names[j])) s.exo.col(Eigen::Index(j)) = data.col(exo_names[j]);
+    for (const std::string& o : outputs) {
+        const int i = m.output_index(o);
+        if (i < 0) throw std::runtime_error("model/data mismatch: '" + o + "' is not an output of the model");
+        if (!data.has(o)) throw std::runtime_error("model/data mismatch: output '" + o + "' is not a column of " + data.source);
+        s.compared.push_back(i);
+    }
+    s.measured.resize(N, Eigen::Index(outputs.size()));
+    for (size_t c = 0; c < outputs.size(); ++c) s.measured.col(Eigen::Index(c)) = data.col(outputs[c]);
+    if (s.compared.empty()) throw std::runtime_error("model/data mismatch: no model output is a column of " + data.source);
+    // Initial state: least squares through the first measured sample.
+    Eigen::MatrixXd Cc(s.compared.size(), m.A.rows());
+    Eigen::VectorXd y0(s.compared.size());
+    for (size_t i = 0; i < s.compared.size(); ++i) {
+        Cc.row(Eigen::Index(i)) = m.C.row(s.compared[i]);
+        y0(Eigen::Index(i)) = data.col(outputs[i])(0);
+    }
+    s.x0 = Cc.completeOrthogonalDecomposition().solve(y0);
+    if (m.closed_loop) {
+        // Controller state in steady state with the first reference and measurement, when one exists.
+        const Eigen::Index nc = m.loop.Ac.rows();
+        Eigen::VectorXd w(m.loop.Bc.cols());
+        for (size_t j = 0; j < m.loop.references.size(); ++j) w(Eigen::Index(j)) = s.exo(0, Eigen::Index(j));
+        for (size_t j = 0; j < m.loop.measured.size(); ++j)
+            w(Eigen::Index(m.loop.references.size() + j)) = m.C.row(m.loop.measured[j]).dot(s.x0);
+        s.xc0 = Eigen::VectorXd::Zero(nc);
+        if (nc > 0) {
+            const Eigen::MatrixXd IA = Eigen::MatrixXd::Identity(nc, nc) - m.loop.Ac;
+            Eigen::FullPivLU<Eigen::MatrixXd> lu(IA);
+            if (lu.isInvertible()) s.xc0 = lu.solve(m.loop.Bc * w);
+        }
+    }
+    return s;
+}
+
+namespace {
+
+// Ring buffer holding the last `len` vectors of dimension `dim`.
+struct History {
+    std::vector<double> buf;
+    int dim = 0, len = 0, head = 0;
+    void init(int d, int l, const double* fill)
+    {
+        dim = d;
+        len = std::max(l, 1);
+        buf.assign(size_t(dim) * size_t(len), 0.0);
+        for (int i = 0; i < len; ++i) std::copy(fill, fill + dim, buf.begin() + long(i) * dim);
+        head = 0;
+    }
+    void push(const double* x)
+    {
+        std::copy(x, x + dim, buf.begin() + long(head) * dim);
+        head = (head + 1) % len;
+    }
+    // Value pushed `lag` pushes ago (lag 1 = the latest).
+    const double* lagged(int lag) const { return &buf[size_t(((head - lag) % len + len) % len) * size_t(dim)]; }
+};
+
+double tanh_sign(double v, double eps) { return std::tanh(v / eps); }
+
+// A Grunwald-Letnikov operator of order r with L terms in caller storage
+// (frac_gl_init); a non-finite order (a diverged fit) makes it throw.
+void gl_init_or_throw(frac_gl& gl, double r, double Ts, int L, std::vector<frac_real>& store)
+{
+    const size_t n = size_t(std::max(L, 1));
+    store.assign(FRAC_GL_STORAGE(n), frac_real(0));
+    if (frac_gl_init(&gl, frac_real(r), frac_real(Ts), n, store.data(), store.size()) != FRAC_OK)
+        throw std::runtime_error("fractional operator of order " + std::to_string(r) + " rejected by frac_gl_init");
+}
+
+}  // namespace
+
+ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effects, Eigen::Index n)
+{
+    const NominalModel& m = *s.model;
+    const Eigen::Index N = n < 0 ? s.samples() : std::min(n, s.samples());
+    const int nx = int(m.A.rows()), nu = int(m.B.cols()), ny = int(m.C.rows());
+    const int ncmp = int(s.compared.size()), fi = m.force_input;
+    const double Ts = m.Ts, inf = std::numeric_limits<double>::infinity();
+
+    // Effect terms (absent effects leave the nominal unchanged), each set by
+    // its descriptor. Delays in samples, real: d = n + f reads
+    // (1 - f) x(k - n) + f x(k - n - 1) (linear interpolation between
+    // samples, so that a delay between two samples, e.g. of a
+    // sample-and-hold, is not rounded to one of them).
+    ReplayTerms T;
+    T.dout.assign(size_t(ny), 0.0);
+    T.mode_gain.assign(size_t(ny), 0.0);
+    T.offset.assign(size_t(ny), 0.0);
+    T.step.assign(size_t(ny), 0.0);
+    for (const EffectInstance& e : effects) descriptor(e.kind).apply(e.params, e.site, s, T);
+    const double din = T.din;
+    const int dout_max = T.dout_max;
+    const std::vector<double>& dout = T.dout;
+    const double Fc = T.Fc, Foff = T.Foff, Fv = T.Fv, Sc = T.Sc, Ss = T.Ss, Svs = T.Svs, bl = T.bl, dz = T.dz,
+                 sat = T.sat > 0 ? T.sat : inf, fc = T.fc, alpha = T.alpha, gain = T.gain;
+    const bool stribeck = T.stribeck, fractional = T.fractional, mode = T.mode;
+    const double cbl = T.cbl, cfc = T.cfc, calpha = T.calpha;
+    const bool cfrac = T.cfrac;
+    const double f_hz = T.f_hz, zeta = T.zeta;
+    const std::vector<double>&mode_gain = T.mode_gain, &offset = T.offset, &step = T.step;
+
+    // Velocity row, and the velocity one step ahead: v(k+1) = cvA x(k) + cvB u(k).
+    std::vector<double> cv(size_t(nx), 0.0), cvA(size_t(nx), 0.0), cvB(size_t(nu), 0.0);
+    if (m.velocity >= 0) {
+        for (int j = 0; j < nx; ++j) {
+            cv[size_t(j)] = m.C(m.velocity, j);
+            for (int i = 0; i < nx; ++i) cvA[size_t(j)] += m.C(m.velocity, i) * m.A(i, j);
+        }
+        for (int l = 0; l < nu; ++l)
+            for (int i = 0; i < nx; ++i) cvB[size_t(l)] += m.C(m.velocity, i) * m.B(i, l);
+    }
+    const double bv = cvB[size_t(fi)];
+    const double eps = s.eps_velocity;
+    // Mode: eta'' + 2 zeta w eta' + w^2 eta = w^2 u, discretised with zero-order
+    // hold; the outputs see g eta'/w, a resonance with no static gain (a static
+    // gain change is gain_error's job), peak g/(2 zeta) at w.
+    Eigen::Matrix2d Am = Eigen::Matrix2d::Identity();
+    Eigen::Vector2d Bm = Eigen::Vector2d::Zero();
+    const double mode_w = 2 * M_PI * std::max(f_hz, 1e-6);
+    if (mode) {
+        const double w = mode_w;
+        Eigen::MatrixXd Ac(2, 2), Bc(2, 1), Ad, Bd;
+        Ac << 0, 1, -w * w, -2 * zeta * w;
+        Bc << 0, w * w;
+        zoh(Ac, Bc, Ts, Ad, Bd);
+        Am = Ad;
+        Bm = Bd.col(0);
+    }
+    // c D^alpha of the position = c D^(alpha-1) of v: libfrac's
+    // Grunwald-Letnikov operator (frac/fo_gl.h) of order alpha - 1, memory
+    // fractional_memory samples, on v.
+    std::vector<frac_real> gl_store;
+    frac_gl gl_v;
+    if (fractional) gl_init_or_throw(gl_v, alpha - 1.0, Ts, s.fractional_memory, gl_store);
+    // Coupling (gap.coupling): the real spring's torque minus the nominal's,
+    //   D = -k clamp(q, -w/2, w/2)        (play of width w: k dz(q) - k q)
+    //     + c D^alpha q                   (Grunwald-Letnikov of order alpha on q).
+    // The fractional term is evaluated at mid-sample, q = (q(k) + q(k+1))/2
+    // with the nominal q(k+1), and held over the sample. The play is applied
+    // on sub-steps of the coupling's state block (nominal.hpp, Coupling),
+    // each an implicit trapezoid D(q at mid-sub-step) solved by fixed-point
+    // iteration (contraction |twist . torque_m| k/2). One explicit step per
+    // 1.2 ms sample misses the gap-bench gear's contacts completely (its
+    // free play gets a spurious eigenvalue of 0.944 per step); one implicit
+    // step leaves 40 % of the effect as error, 8 sub-steps 3 % (driven by the
+    // recorded torque, against RK4 with 32 sub-steps per sample).
+    const bool coupled = m.has_coupling;
+    const Coupling* cp = coupled ? &m.coupling : nullptr;
+    const double ck = coupled ? cp->stiffness : 0.0;
+    const double ctb = coupled ? cp->twist_s.dot(cp->torque_m) : 0.0;
+    const Eigen::Index ns = coupled ? Eigen::Index(cp->states.size()) : 0;
+    Eigen::VectorXd zs(ns), zp(ns), gs(ns), drive(ns);
+    // c D^alpha q: libfrac's Grunwald-Letnikov operator of order alpha on the
+    // mid-sample deflections; the sample's term is g qmid + y0 with the
+    // operator's feedthrough g and free response y0 (fo_gl.h), and qmid is
+    // pushed once the sample's end state is known.
+    std::vector<frac_real> cgl_store;
+    frac_gl gl_q;
+    if (cfrac) gl_init_or_throw(gl_q, calpha, Ts, s.fractional_memory, cgl_store);
+    // Deflection twist . x of a plant state.
+    auto twist_of = [&](const std::vector<double>& xs) {
+        double q = 0;
+        for (int j = 0; j < nx; ++j) q += cp->twist(j) * xs[size_t(j)];
+        return q;
+    };
+
+    ReplayTrace tr;
+    tr.y.resize(N, ncmp);
+    tr.twist = Eigen::VectorXd::Zero(N);
+    tr.u.resize(N);
+    tr.v.resize(N);
+    std::vector<double> x(s.x0.data(), s.x0.data() + nx), xn(static_cast<size_t>(nx));
+    std::vector<double> xc(s.xc0.data(), s.xc0.data() + s.xc0.size()), xcn(xc.size());
+    const int ncs = int(xc.size());
+    std::vector<double> ytrue(static_cast<size_t>(ny)), ysens(static_cast<size_t>(ny)), yraw(static_cast<size_t>(ny)),
+        u(static_cast<size_t>(nu)),
+        up(static_cast<size_t>(nu));
+    std::vector<double> w(m.closed_loop ? static_cast<size_t>(m.loop.Bc.cols()) : 0), cvec(static_cast<size_t>(nu));
+    double eta[2] = {0, 0};
+    double bl_out = 0.0;
+    History h_out, h_in, h_ctl;
+    const int nr = m.closed_loop ? int(m.loop.references.size()) : 0;
+
+    auto plant_outputs = [&](bool with_d) {
+        for (int i = 0; i < ny; ++i) {
+            double acc = 0;
+            for (int j = 0; j < nx; ++j) acc += m.C(i, j) * x[size_t(j)];
+            if (with_d)
+                for (int j = 0; j < nu; ++j) acc += m.D(i, j) * up[size_t(j)];
+            ytrue[size_t(i)] = acc + mode_gain[size_t(i)] * eta[1] / mode_w;
+        }
+        if (h_out.len == 0) h_out.init(ny, dout_max + 2, ytrue.data());
+        h_out.push(ytrue.data());
+        for (int i = 0; i < ny; ++i) {
+            const int n = int(dout[size_t(i)]);
+            const double f = dout[size_t(i)] - n;
+            double y = (1 - f) * h_out.lagged(n + 1)[i] + (f > 0 ? f * h_out.lagged(n + 2)[i] : 0.0) + offset[size_t(i)];
+            yraw[size_t(i)] = y;
+            if (step[size_t(i)] > 0) y = step[size_t(i)] * std::round(y / step[size_t(i)]);
+            ysens[size_t(i)] = y;
+        }
+    };
+    auto input_path = [&](double v) {
+        if (h_in.len == 0) h_in.init(nu, int(din) + 2, u.data());
+        h_in.push(u.data());
+        const int n = int(din);
+        const double fr = din - n;
+        for (int j = 0; j < nu; ++j) up[size_t(j)] = (1 - fr) * h_in.lagged(n + 1)[j] + (fr > 0 ? fr * h_in.lagged(n + 2)[j] : 0.0);
+        double a = gain * up[size_t(fi)];
+        a = std::min(std::max(a, -sat), sat);
+        if (dz > 0) a = std::fabs(a) <= dz ? 0.0 : a - std::copysign(dz, a);
+        if (bl >= 0) {
+            bl_out = std::min(std::max(bl_out, a - 0.5 * bl), a + 0.5 * bl);
+            a = bl_out;
+        }
+        up[size_t(fi)] = a;
+        double f = 0.0;
+        if (m.velocity >= 0) {
+            f = Foff + Fv * v;
+            if (fractional) {
+                frac_real d = 0;
+                if (frac_gl_step(&gl_v, frac_real(v), &d) != FRAC_OK) d = std::numeric_limits<double>::quiet_NaN();
+                f += fc * double(d);
+            }
+            // Dry friction of level L(v) (Coulomb, plus the Stribeck curve),
+            // discrete stick-slip: the force is the one that stops the
+            // velocity within this step, limited to +-L(v); so sliding gets
+            // L sign(v) exactly and sticking holds without chattering.
+            double level = Fc;
+            if (stribeck) level += Sc + (Ss - Sc) * std::exp(-(v / Svs) * (v / Svs));
+            if (level != 0.0) {
+                if (bv != 0.0) {
+                    double vfree = -bv * f;
+                    for (int j = 0; j < nx; ++j) vfree += cvA[size_t(j)] * x[size_t(j)];
+                    for (int l = 0; l < nu; ++l) vfree += cvB[size_t(l)] * up[size_t(l)];
+                    const double stop = vfree / bv, lv = std::fabs(level);
+                    f += std::min(std::max(stop, -lv), lv);
+                } else {
+                    f += level * tanh_sign(v, eps);
+                }
+            }
+        }
+        up[size_t(fi)] = a - f;
+    };
+
+    for (Eigen::Index k = 0; k < N; ++k) {
+        double v = 0;
+        for (int j = 0; j < nx; ++j) v += cv[size_t(j)] * x[size_t(j)];
+        if (m.closed_loop) {
+            plant_outputs(false);
+            for (int j = 0; j < nr; ++j) w[size_t(j)] = s.exo(k, j);
+            for (size_t j = 0; j < m.loop.measured.size(); ++j) w[size_t(nr) + j] = ysens[size_t(m.loop.measured[j])];
+            for (int i = 0; i < nu; ++i) {
+                double acc = 0;
+                for (int j = 0; j < ncs; ++j) acc += m.loop.Cc(i, j) * xc[size_t(j)];
+                for (size_t j = 0; j < w.size(); ++j) acc += m.loop.Dc(i, Eigen::Index(j)) * w[j];
+                cvec[size_t(i)] = acc;
+            }
+            for (int i = 0; i < ncs; ++i) {
+                double acc = 0;
+                for (int j = 0; j < ncs; ++j) acc += m.loop.Ac(i, j) * xc[size_t(j)];
+                for (size_t j = 0; j < w.size(); ++j) acc += m.loop.Bc(i, Eigen::Index(j)) * w[j];
+                xcn[size_t(i)] = acc;
+            }
+            xc.swap(xcn);
+            if (h_ctl.len == 0) h_ctl.init(nu, m.loop.delay_samples + 1, cvec.data());
+            h_ctl.push(cvec.data());
+            const double* cd = m.loop.delay_samples > 0 ? h_ctl.lagged(m.loop.delay_samples + 1) : cvec.data();
+            for (int i = 0; i < nu; ++i) {
+                u[size_t(i)] = std::min(std::max(cd[i], -m.loop.saturation), m.loop.saturation);
+                if (i < int(m.loop.additive.size())) u[size_t(i)] += s.exo(k, nr + i);
+            }
+            if (k == 0) bl_out = gain * u[size_t(fi)];
+            input_path(v);
+        } else {
+            for (int i = 0; i < nu; ++i) u[size_t(i)] = s.exo(k, i);
+            if (k == 0) bl_out = gain * u[size_t(fi)];
+            input_path(v);
+            plant_outputs(true);
+        }
+        for (int c = 0; c < ncmp; ++c) {
+            const size_t i = size_t(s.compared[size_t(c)]);
+            tr.y(k, c) = ysens[i];
+            // A quantizing sensor reports the cell [m - q/2, m + q/2] around
+            // its reading m: the residual is the model value's distance to
+            // that cell (zero inside it), so the trace holds m shifted by
+            // that distance (the feedback above gets the rounded value).
+            if (step[i] > 0 && k < s.measured.rows()) {
+                const double m = s.measured(k, c), h = 0.5 * step[i];
+                tr.y(k, c) = m + (yraw[i] - std::min(std::max(yraw[i], m - h), m + h));
+            }
+        }
+        tr.u(k) = up[size_t(fi)];
+        tr.v(k) = v;
+        for (int i = 0; i < nx; ++i) {
+            double acc = 0;
+            for (int j = 0; j < nx; ++j) acc += m.A(i, j) * x[size_t(j)];
+            for (int j = 0; j < nu; ++j) acc += m.B(i, j) * up[size_t(j)];
+            xn[size_t(i)] = acc;
+        }
+        if (coupled) {
+            const double q0 = twist_of(x);
+            tr.twist(k) = q0;
+            double Dfr = 0.0;
+            if (cfrac) {
+                const double qp = twist_of(xn);  // the nominal q(k+1)
+                frac_real y0 = 0;
+                frac_gl_free_response(&gl_q, &y0);
+                Dfr = cfc * (double(frac_gl_feedthrough(&gl_q)) * 0.5 * (q0 + qp) + double(y0));
+            }
+            if (cbl >= 0) {
+                // Sub-steps: z+ = Phi_m z + Gamma_m g + torque_m (Dfr + D), g the sample's forcing.
+                for (Eigen::Index i = 0; i < ns; ++i) {
+                    const size_t si = size_t(cp->states[size_t(i)]);
+                    zs(i) = x[si];
+                    zp(i) = xn[si];
+                }
+                zp.noalias() -= cp->Phi * zs;
+                gs.noalias() = cp->Gamma_inv * zp;
+                drive.noalias() = cp->Gamma_m * gs;
+                drive += cp->torque_m * Dfr;
+                for (int j = 0; j < cp->substeps; ++j) {
+                    zp.noalias() = cp->Phi_m * zs;
+                    zp += drive;
+                    const double a0 = cp->twist_s.dot(zs), a1 = cp->twist_s.dot(zp);
+                    double D = 0;
+                    for (int it = 0; it < 3; ++it) {
+                        const double q = 0.5 * (a0 + a1 + ctb * D);
+                        D = -ck * std::min(std::max(q, -0.5 * cbl), 0.5 * cbl);
+                    }
+                    zs = zp;
+                    zs += cp->torque_m * D;
+                }
+                for (Eigen::Index i = 0; i < ns; ++i) xn[size_t(cp->states[size_t(i)])] = zs(i);
+            } else if (cfrac) {
+                for (int i = 0; i < nx; ++i) xn[size_t(i)] += cp->torque(i) * Dfr;
+            }
+            if (cfrac) {
+                frac_real dummy = 0;
+                frac_gl_step(&gl_q, frac_real(0.5 * (q0 + twist_of(xn))), &dummy);
+            }
+        }
+        x.swap(xn);
+        if (mode) {
+            const double e0 = Am(0, 0) * eta[0] + Am(0, 1) * eta[1] + Bm(0) * up[size_t(fi)];
+            const double e1 = Am(1, 0) * eta[0] + Am(1, 1) * eta[1] + Bm(1) * up[size_t(fi)];
+            eta[0] = e0;
+            eta[1] = e1;
+        }
+    }
+    return tr;
+}
+
+}  // namespace gap
+}  // namespace fracdesign

@@ -1,0 +1,211 @@
+// test_gap_verdict.cpp - honest verdicts: a nominal whose replay diverges, a
+// constant or overflowing channel are refused with one message naming the
+// channel; parameters the record does not identify are flagged; candidates
+// the record cannot tell apart are named with the experiment that would.
+//
+// The plant is a first-order lag v' = -a v + b u with a and b derived here
+// (not a seed's), driven open loop by a multisine.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "fracdesign/gap/diagnosis.hpp"
+#include "gap_drive.hpp"
+
+using namespace fracdesign::gap;
+namespace fs = std::filesystem;
+
+namespace {
+
+const double kTs = 0.01;
+const Eigen::Index kN = 2000;
+// a = 2 pi x 0.7 Hz corner, b = a x 1.3 (static gain 1.3)
+const double kA = 2 * M_PI * 0.7, kB = 1.3 * kA;
+
+nlohmann::json lag_doc(double a)
+{
+    return {{"schema", "frac.model"}, {"version", 1},       {"kind", "statespace"}, {"name", "lag"},
+            {"time", "continuous"},   {"A", {{-a}}},        {"B", {{kB}}},          {"C", {{1.0}}},
+            {"D", {{0.0}}},           {"inputs", {"u"}},    {"outputs", {"v"}},
+            {"gap", {{"velocity", "v"}, {"force_input", "u"}, {"units", {{"u", "V"}, {"v", "rad/s"}}}}}};
+}
+
+// The record: the nominal lag with `truth`, plus 0.3 % noise.
+Signals record(const std::vector<EffectInstance>& truth)
+{
+    Signals s = multisine_record({"u", "v"}, kTs, kN, {{1.0, 0.31, 0.0}, {0.6, 1.7, 1.0}, {0.4, 4.3, 2.0}});
+    const NominalModel m = nominal_from_json(lag_doc(kA), kTs);
+    const ReplayTrace tr = replay(make_replay_setup(m, s, {}, {"v"}), truth);
+    const double sd = std::sqrt((tr.y.col(0).array() - tr.y.col(0).mean()).square().mean());
+    std::mt19937 rng(11);
+    std::normal_distribution<double> n(0.0, 1.0);
+    for (Eigen::Index k = 0; k < kN; ++k) s.values(k, 1) = tr.y(k, 0) + 0.003 * sd * n(rng);
+    return s;
+}
+
+std::string error_of(const NominalModel& m, const Signals& s, const GapOptions& o)
+{
+    try {
+        diagnose(m, s, nullptr, o);
+    } catch (const std::runtime_error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+GapOptions few(std::vector<Effect> e)
+{
+    GapOptions o;
+    o.effects = std::move(e);
+    return o;
+}
+
+}  // namespace
+
+TEST(GapVerdict, refuses_a_nominal_whose_replay_diverges)
+{
+    // A = [[+50]]: the replay grows as e^{50 t}.
+    const NominalModel m = nominal_from_json(lag_doc(-50.0), kTs);
+    const std::string err = error_of(m, record({}), few({Effect::coulomb_friction}));
+    EXPECT_NE(err.find("diverges"), std::string::npos) << err;
+    EXPECT_NE(err.find("'v'"), std::string::npos) << err;
+    EXPECT_NE(err.find("unstable"), std::string::npos) << err;
+    EXPECT_EQ(err.find('\n'), std::string::npos) << err;
+}
+
+TEST(GapVerdict, cli_exits_non_zero_on_a_diverging_nominal_and_writes_nothing)
+{
+    const fs::path d = fs::temp_directory_path() / "gap_verdict_cli";
+    fs::remove_all(d);
+    fs::create_directories(d);
+    std::ofstream(d / "model.json") << lag_doc(-50.0).dump();
+    const Signals s = record({});
+    {
+        std::ofstream c(d / "run.csv");
+        c << "t,u,v\n";
+        c.precision(17);
+        for (Eigen::Index k = 0; k < s.samples(); ++k) c << double(k) * kTs << "," << s.values(k, 0) << "," << s.values(k, 1) << "\n";
+    }
+    const std::string cmd = std::string(FRACDESIGN_EXE) + " gap --model " + (d / "model.json").string() + " --data " +
+                            (d / "run.csv").string() + " --effects coulomb_friction --out " + (d / "out").string() +
+                            " 2> " + (d / "err.txt").string() + " > /dev/null";
+    const int rc = std::system(cmd.c_str());
+    EXPECT_NE(rc, 0);
+    std::ifstream e(d / "err.txt");
+    const std::string err((std::istreambuf_iterator<char>(e)), std::istreambuf_iterator<char>());
+    EXPECT_NE(err.find("diverges"), std::string::npos) << err;
+    EXPECT_FALSE(fs::exists(d / "out"));
+    fs::remove_all(d);
+}
+
+TEST(GapVerdict, refuses_a_constant_output_channel_by_name)
+{
+    const NominalModel m = nominal_from_json(lag_doc(kA), kTs);
+    Signals s = record({});
+    s.values.col(1).setConstant(0.25);
+    const std::string err = error_of(m, s, few({Effect::gain_error}));
+    EXPECT_NE(err.find("'v'"), std::string::npos) << err;
+    EXPECT_NE(err.find("constant"), std::string::npos) << err;
+}
+
+TEST(GapVerdict, refuses_an_overflowing_sample_by_name)
+{
+    const NominalModel m = nominal_from_json(lag_doc(kA), kTs);
+    Signals s = record({});
+    s.values(700, 1) = 1e308;
+    const std::string err = error_of(m, s, few({Effect::gain_error}));
+    EXPECT_NE(err.find("'v'"), std::string::npos) << err;
+    EXPECT_NE(err.find("overflow"), std::string::npos) << err;
+    EXPECT_NE(err.find("t = 7"), std::string::npos) << err;
+}
+
+TEST(GapVerdict, flags_a_parameter_at_its_bound_and_not_the_true_effects)
+{
+    // Viscous friction Fv = 0.35 a (in the lag's force units per velocity);
+    // the dead-zone candidate, fitted on a record without one, sits at 0.
+    const double Fv = 0.35 * kA / kB;
+    const NominalModel m = nominal_from_json(lag_doc(kA), kTs);
+    const GapResult r = diagnose(m, record({{Effect::viscous_friction, {Fv}}}), nullptr,
+                                 few({Effect::viscous_friction, Effect::deadzone}));
+    ASSERT_EQ(r.verdict.effects.size(), 1u);
+    EXPECT_EQ(r.verdict.effects[0].kind, Effect::viscous_friction);
+    EXPECT_NEAR(r.verdict.effects[0].params[0], Fv, 0.05 * Fv);
+    EXPECT_EQ(r.verdict.unidentified[0][0], "");
+    bool seen = false;
+    for (const FitReport& c : r.candidates)
+        if (!c.effects.empty() && c.effects[0].kind == Effect::deadzone) {
+            seen = true;
+            EXPECT_NE(c.unidentified[0][0].find("lower bound"), std::string::npos) << c.unidentified[0][0];
+        }
+    EXPECT_TRUE(seen);
+    const nlohmann::json j = result_json(r);
+    EXPECT_EQ(j["verdict"]["params_unit"]["Fv"], "V/(rad/s)");
+    EXPECT_TRUE(j["verdict"]["unidentified"].empty());
+}
+
+TEST(GapVerdict, names_input_and_output_delay_as_look_alikes_in_open_loop)
+{
+    // Open loop on a linear one-output plant an input delay and an output
+    // delay are the same map: the verdict must say so and name the experiment.
+    const double d = 7 * kTs;
+    const NominalModel m = nominal_from_json(lag_doc(kA), kTs);
+    const GapResult r = diagnose(m, record({{Effect::input_delay, {d}}}), nullptr,
+                                 few({Effect::input_delay, Effect::output_delay, Effect::gain_error}));
+    ASSERT_FALSE(r.verdict.effects.empty());
+    const std::string first = effect_name(r.verdict.effects[0].kind);
+    EXPECT_TRUE(first == "input_delay" || first == "output_delay") << first;
+    ASSERT_EQ(r.confidence.look_alikes.size(), 1u);
+    const std::string other = first == "input_delay" ? "output_delay" : "input_delay";
+    EXPECT_EQ(r.confidence.look_alikes[0].effect, other);
+    EXPECT_NE(r.confidence.look_alikes[0].experiment.find("closed-loop"), std::string::npos);
+    EXPECT_EQ(r.confidence.runner_up, other);
+    EXPECT_LT(r.confidence.margin, 0.01);
+    const nlohmann::json j = result_json(r);
+    EXPECT_EQ(j["verdict"]["confidence"]["look_alikes"][0]["effect"], other);
+}
+
+TEST(GapVerdict, a_clear_verdict_has_no_look_alike_and_a_margin)
+{
+    const NominalModel m = nominal_from_json(lag_doc(kA), kTs);
+    const GapResult r = diagnose(m, record({{Effect::gain_error, {1.25}}}), nullptr,
+                                 few({Effect::gain_error, Effect::saturation, Effect::deadzone}));
+    ASSERT_FALSE(r.verdict.effects.empty());
+    EXPECT_EQ(r.verdict.effects[0].kind, Effect::gain_error);
+    EXPECT_TRUE(r.confidence.look_alikes.empty());
+    EXPECT_GT(r.confidence.margin, 0.05);
+}
+
+TEST(GapVerdict, fracdesign_prints_its_version)
+{
+    const fs::path out = fs::temp_directory_path() / "fracdesign_version.txt";
+    ASSERT_EQ(std::system((std::string(FRACDESIGN_EXE) + " --version > " + out.string()).c_str()), 0);
+    std::ifstream in(out);
+    std::string line;
+    std::getline(in, line);
+    EXPECT_EQ(line.rfind("fracdesign ", 0), 0u) << line;
+    EXPECT_NE(line.find('.'), std::string::npos) << line;
+    fs::remove(out);
+}
+
+TEST(GapVerdict, candidate_fits_give_the_same_result_on_one_and_on_two_threads)
+{
+    const NominalModel m = nominal_from_json(lag_doc(kA), kTs);
+    const Signals s = record({{Effect::coulomb_friction, {0.08, 0.0}}, {Effect::input_delay, {3 * kTs}}});
+    GapOptions o;
+    o.effects = {Effect::coulomb_friction, Effect::viscous_friction, Effect::input_delay, Effect::gain_error,
+                 Effect::deadzone, Effect::sensor_offset};
+    o.threads = 1;
+    nlohmann::json one = result_json(diagnose(m, s, nullptr, o));
+    o.threads = 2;
+    int lines = 0;
+    o.progress = [&](const std::string&) { ++lines; };
+    nlohmann::json two = result_json(diagnose(m, s, nullptr, o));
+    EXPECT_EQ(lines, 6);
+    one.erase("seconds");
+    two.erase("seconds");
+    EXPECT_EQ(one.dump(), two.dump());
+}
