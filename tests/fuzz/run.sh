@@ -23,6 +23,8 @@ for f in "$src"/fuzz_*.c "$src"/fuzz_*.cpp; do
   if [ ! -d "$seeds" ]; then echo "$t: no seed corpus $seeds"; rc=1; continue; fi
   mkdir -p "$work"
   log="$build/fuzz-findings/$t.log"
+  # findings of an earlier run were reported by it; this run counts its own
+  rm -f "$build/fuzz-findings/$t"-*
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     "$exe" -max_total_time="$secs" -print_final_stats=1 -timeout=10 -rss_limit_mb=2048 \
     -artifact_prefix="$build/fuzz-findings/$t-" "$work" "$seeds" > "$log" 2>&1
