@@ -175,7 +175,8 @@ class GapResult:
 
 def diagnose(model: Union[Model, dict, str, os.PathLike], data: Record, validate: Optional[Record] = None,
              effects: Optional[Sequence[str]] = None, inputs: Optional[Sequence[str]] = None,
-             outputs: Optional[Sequence[str]] = None, holdout: float = 0.3, command: Optional[str] = None) -> GapResult:
+             outputs: Optional[Sequence[str]] = None, holdout: float = 0.3, command: Optional[str] = None,
+             threads: int = 0) -> GapResult:
     """Diagnoses the gap between ``model`` and the record ``data``.
 
     model: a :class:`~fracarm.models.Model`, a document dict or a path to one
@@ -185,13 +186,18 @@ def diagnose(model: Union[Model, dict, str, os.PathLike], data: Record, validate
       ``data`` is held out and never fitted.
     effects: candidate effect names (default: all, see :func:`effect_names`).
     inputs, outputs: data columns driving the model / compared (defaults: the model's names).
+    threads: workers for the independent candidate fits (0: one per core, as
+      the CLI); the result does not depend on it. The fleet passes 1, since
+      it runs one record per worker core.
     command: recorded in result.json and the report (default: the equivalent
       ``fracdesign gap`` command line for path arguments, else a description).
 
     Raises UsageError for bad options (the CLI's exit 2) and FracarmError for
     bad files or documents (exit 1), with the CLI's messages.
     """
-    opts: Dict[str, Any] = {"holdout": float(holdout)}
+    if int(threads) < 0:
+        raise UsageError("threads must be >= 0 (0: one per core)")
+    opts: Dict[str, Any] = {"holdout": float(holdout), "threads": int(threads)}
     if effects is not None:
         known = set(effect_names()) | {"none"}
         for e in effects:

@@ -37,6 +37,8 @@ py::tuple diagnose(const py::dict& model, const py::dict& data, const py::object
     if (options.contains("outputs")) opt.outputs = options["outputs"].cast<std::vector<std::string>>();
     if (options.contains("holdout")) opt.holdout = options["holdout"].cast<double>();
     if (!(opt.holdout > 0 && opt.holdout < 1)) throw py::value_error("--holdout must be in (0, 1)");
+    if (options.contains("threads")) opt.threads = options["threads"].cast<int>();
+    if (opt.threads < 0) throw py::value_error("threads must be >= 0 (0: one per core)");
     if (options.contains("effects")) {
         opt.effects.clear();
         for (const std::string& e : options["effects"].cast<std::vector<std::string>>()) opt.effects.push_back(gap::effect_from_name(e));

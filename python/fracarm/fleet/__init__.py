@@ -105,7 +105,7 @@ def diagnose_record(row: Dict[str, str], out_dir: str, effects: Optional[Sequenc
     res.update(verdict=None, effects=None, sites=None, gap_before=None, gap_after=None, shrink=None, params=None,
                params_std=None, report=None, error=None, worker=_worker_name())
     try:
-        r = gap.diagnose(row["model"], row["data"], validate=row.get("validate") or None, effects=effects)
+        r = gap.diagnose(row["model"], row["data"], validate=row.get("validate") or None, effects=effects, threads=1)
         _write_dir(rec_dir, {"result.json": r.to_json(), "report.html": r._html})
         v = r.doc["verdict"]
         res.update(verdict=" + ".join(r.verdict) or "none", effects=json.dumps(r.verdict), sites=json.dumps(r.sites),
