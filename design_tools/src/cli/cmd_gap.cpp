@@ -12,7 +12,7 @@
 
 #include "fracdesign/cli.hpp"
 #include "fracdesign/gap/diagnosis.hpp"
-#include "fracdesign/report/gap_report.hpp"
+#include "fracdesign/gap/run.hpp"
 
 namespace fracdesign {
 namespace {
@@ -80,14 +80,12 @@ int run_gap(const std::vector<std::string>& argv)
     const bool has_val = args.has("validate");
     if (has_val) val = gap::load_signals(args.str("validate"));
     const gap::NominalModel model = gap::load_nominal_model(model_path, data.Ts);
-    const gap::GapResult r = gap::diagnose(model, data, has_val ? &val : nullptr, opt);
-
     std::string cmd = "fracdesign gap";
     for (const std::string& a : argv) cmd += " " + a;
-    nlohmann::json j = gap::result_json(r);
-    j["command"] = cmd;
-    const std::string html = report::gap_report_html(r, j, cmd);
-    write_atomically(out, {{"result.json", j.dump(2) + "\n"}, {"report.html", html}});
+    const gap::GapRun run = gap::run_diagnosis(model, data, has_val ? &val : nullptr, opt, cmd);
+    const gap::GapResult& r = run.result;
+    nlohmann::json j = run.json;  // the summary reads it with operator[] (keys it lacks read as null)
+    write_atomically(out, {{"result.json", j.dump(2) + "\n"}, {"report.html", run.report_html}});
 
     if (args.has("json")) {
         std::cout << j.dump(2) << "\n";

@@ -30,13 +30,20 @@ Signals Signals::slice(Eigen::Index first, Eigen::Index n) const
     return s;
 }
 
-Signals load_signals(const std::string& path)
+namespace {
+
+// The reader options of every record the diagnosis takes: at least 3 rows.
+io::SignalCsvOptions record_options()
 {
     io::SignalCsvOptions opt;
     opt.min_rows = 3;
-    const io::SignalTable tab = io::read_signal_csv(path, opt);
+    return opt;
+}
+
+Signals from_table(const io::SignalTable& tab, const std::string& source)
+{
     Signals s;
-    s.source = path;
+    s.source = source;
     s.names = tab.names;
     s.Ts = tab.dt;
     s.t0 = tab.t.front();
@@ -44,6 +51,15 @@ Signals load_signals(const std::string& path)
     for (size_t j = 0; j < tab.columns.size(); ++j)
         s.values.col(Eigen::Index(j)) = Eigen::Map<const Eigen::VectorXd>(tab.columns[j].data(), Eigen::Index(tab.size()));
     return s;
+}
+
+}  // namespace
+
+Signals load_signals(const std::string& path) { return from_table(io::read_signal_csv(path, record_options()), path); }
+
+Signals signals_from_csv_text(const std::string& text, const std::string& origin)
+{
+    return from_table(io::parse_signal_csv(text, origin, record_options()), origin);
 }
 
 }  // namespace gap

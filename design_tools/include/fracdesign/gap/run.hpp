@@ -23,9 +23,5 @@ struct GapRun {
 GapRun run_diagnosis(const NominalModel& model, const Signals& data, const Signals* validate, const GapOptions& opt,
                      const std::string& command);
 
-// A record from signal-CSV text with the same strict checks and messages as
-// load_signals() (they name `origin` where load_signals names the file).
-Signals signals_from_csv_text(const std::string& text, const std::string& origin);
-
 }  // namespace gap
 }  // namespace fracdesign

@@ -29,6 +29,9 @@ struct Signals {
 // project's strict reader; its errors (ragged rows, NaN/Inf, non-uniform or
 // non-increasing time, ...) name the file, row and column.
 Signals load_signals(const std::string& path);
+// The same from signal-CSV text, with the same checks and messages (they name
+// `origin` where load_signals names the file); the Python package's DataFrames.
+Signals signals_from_csv_text(const std::string& text, const std::string& origin);
 
 }  // namespace gap
 }  // namespace fracdesign
