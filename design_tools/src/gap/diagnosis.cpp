@@ -700,7 +700,9 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
     // Where: time windows with their operating condition.
     {
         Eigen::VectorXd r = resn.rowwise().norm() / std::sqrt(double(outs.size()));
-        const double limit = std::isfinite(model.loop.saturation) && model.closed_loop ? model.loop.saturation : nom.u.cwiseAbs().maxCoeff();
+        const double cl_limit = model.closed_loop ? std::min(model.loop.saturation, model.loop.controller->output_limit())
+                                                  : std::numeric_limits<double>::infinity();
+        const double limit = std::isfinite(cl_limit) ? cl_limit : nom.u.cwiseAbs().maxCoeff();
         R.windows = flag_windows(r, nom, data.Ts, data.t0, limit);
     }
 

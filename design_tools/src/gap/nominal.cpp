@@ -76,33 +76,6 @@ std::vector<std::string> names(const json& j, const std::string& key, const std:
     return v;
 }
 
-// Reads (A, B, C, D) with the given input/output counts and discretises at Ts.
-void read_ss(const json& j, Eigen::Index m, Eigen::Index p, double Ts, const std::string& where, Eigen::MatrixXd& A,
-             Eigen::MatrixXd& B, Eigen::MatrixXd& C, Eigen::MatrixXd& D)
-{
-    const Eigen::Index n = rows_of(j, "A");
-    A = matrix(j, "A", n, n, true, where);
-    B = matrix(j, "B", n, m, true, where);
-    C = matrix(j, "C", p, n, true, where);
-    D = matrix(j, "D", p, m, false, where);
-    const std::string domain = j.value("time", "continuous");
-    if (domain == "continuous") {
-        Eigen::MatrixXd Ad, Bd;
-        zoh(A, B, Ts, Ad, Bd);
-        A = Ad;
-        B = Bd;
-    } else if (domain == "discrete") {
-        if (!j.contains("Ts") || !j.at("Ts").is_number())
-            throw std::runtime_error(where + ": a discrete model needs its sample time 'Ts'");
-        const double mTs = j.at("Ts").get<double>();
-        if (std::fabs(mTs - Ts) > 1e-3 * Ts)
-            throw std::runtime_error(where + ": model sample time " + std::to_string(mTs) +
-                                     " s does not match the data's " + std::to_string(Ts) + " s");
-    } else {
-        throw std::runtime_error(where + ": 'time' must be \"continuous\" or \"discrete\"");
-    }
-}
-
 // The sub-step matrices of gap.coupling (nominal.hpp, Coupling).
 void setup_coupling_substeps(Coupling& c, const Eigen::MatrixXd& A, double Ts, const json& cp, const std::string& w)
 {
@@ -158,7 +131,33 @@ void setup_coupling_substeps(Coupling& c, const Eigen::MatrixXd& A, double Ts, c
 
 }  // namespace
 
-NominalModel nominal_from_json(const json& doc, double Ts)
+void read_statespace(const json& j, Eigen::Index m, Eigen::Index p, double Ts, const std::string& where,
+                     Eigen::MatrixXd& A, Eigen::MatrixXd& B, Eigen::MatrixXd& C, Eigen::MatrixXd& D)
+{
+    const Eigen::Index n = rows_of(j, "A");
+    A = matrix(j, "A", n, n, true, where);
+    B = matrix(j, "B", n, m, true, where);
+    C = matrix(j, "C", p, n, true, where);
+    D = matrix(j, "D", p, m, false, where);
+    const std::string domain = j.value("time", "continuous");
+    if (domain == "continuous") {
+        Eigen::MatrixXd Ad, Bd;
+        zoh(A, B, Ts, Ad, Bd);
+        A = Ad;
+        B = Bd;
+    } else if (domain == "discrete") {
+        if (!j.contains("Ts") || !j.at("Ts").is_number())
+            throw std::runtime_error(where + ": a discrete model needs its sample time 'Ts'");
+        const double mTs = j.at("Ts").get<double>();
+        if (std::fabs(mTs - Ts) > 1e-3 * Ts)
+            throw std::runtime_error(where + ": model sample time " + std::to_string(mTs) +
+                                     " s does not match the data's " + std::to_string(Ts) + " s");
+    } else {
+        throw std::runtime_error(where + ": 'time' must be \"continuous\" or \"discrete\"");
+    }
+}
+
+NominalModel nominal_from_json(const json& doc, double Ts, const std::string& base_dir)
 {
     // The plant: any rational model of the project's model format (model_json.hpp).
     if (!doc.is_object()) throw std::runtime_error("model: not a JSON object");
@@ -257,14 +256,21 @@ NominalModel nominal_from_json(const json& doc, double Ts)
         const std::string w = "model gap.closed_loop";
         m.closed_loop = true;
         m.loop.references = names(cl, "references", w);
-        for (const std::string& s : names(cl, "measured", w)) {
+        const std::vector<std::string> measured = names(cl, "measured", w);
+        for (const std::string& s : measured) {
             const int i = m.output_index(s);
             if (i < 0) throw std::runtime_error(w + ": measured output '" + s + "' is not a model output");
             m.loop.measured.push_back(i);
         }
         if (!cl.contains("controller")) throw std::runtime_error(w + ": missing 'controller'");
-        read_ss(cl.at("controller"), Eigen::Index(m.loop.references.size() + m.loop.measured.size()),
-                Eigen::Index(m.inputs.size()), Ts, w + ".controller", m.loop.Ac, m.loop.Bc, m.loop.Cc, m.loop.Dc);
+        ControllerContext ctx;
+        ctx.Ts = Ts;
+        ctx.references = m.loop.references;
+        ctx.measured = measured;
+        ctx.outputs = int(m.inputs.size());
+        ctx.where = w + ".controller";
+        ctx.base_dir = base_dir;
+        m.loop.controller = make_controller(cl.at("controller"), ctx);
         m.loop.delay_samples = cl.value("delay_samples", 0);
         if (m.loop.delay_samples < 0) throw std::runtime_error(w + ": delay_samples must be >= 0");
         if (cl.contains("saturation")) m.loop.saturation = cl.at("saturation").get<double>();
@@ -286,8 +292,10 @@ NominalModel load_nominal_model(const std::string& path, double Ts)
     } catch (const std::exception& e) {
         throw std::runtime_error(path + ": not valid JSON (" + e.what() + ")");
     }
+    const size_t slash = path.find_last_of('/');
+    const std::string dir = slash == std::string::npos ? "." : path.substr(0, slash == 0 ? 1 : slash);
     try {
-        return nominal_from_json(doc, Ts);
+        return nominal_from_json(doc, Ts, dir);
     } catch (const nlohmann::json::exception& e) {
         throw std::runtime_error(path + ": malformed model (" + e.what() + ")");
     } catch (const std::runtime_error& e) {
@@ -298,17 +306,18 @@ NominalModel load_nominal_model(const std::string& path, double Ts)
 std::vector<Mode> NominalModel::modes() const
 {
     Eigen::MatrixXd Acl = A;
-    if (closed_loop) {
+    Eigen::MatrixXd Ac, Bc, Cc, Dc;
+    if (closed_loop && loop.controller->small_signal(Ac, Bc, Cc, Dc)) {
         // x+ = A x + B (Cc xc + Dc [r; Cm x]),  xc+ = Ac xc + Bc [r; Cm x]  (r = 0)
-        const Eigen::Index n = A.rows(), nc = loop.Ac.rows();
+        const Eigen::Index n = A.rows(), nc = Ac.rows();
         Eigen::MatrixXd Cm(loop.measured.size(), n);
         for (size_t i = 0; i < loop.measured.size(); ++i) Cm.row(Eigen::Index(i)) = C.row(loop.measured[i]);
-        const Eigen::MatrixXd Dm = loop.Dc.rightCols(Cm.rows()), Bm = loop.Bc.rightCols(Cm.rows());
+        const Eigen::MatrixXd Dm = Dc.rightCols(Cm.rows()), Bm = Bc.rightCols(Cm.rows());
         Acl.resize(n + nc, n + nc);
         Acl.topLeftCorner(n, n) = A + B * Dm * Cm;
-        Acl.topRightCorner(n, nc) = B * loop.Cc;
+        Acl.topRightCorner(n, nc) = B * Cc;
         Acl.bottomLeftCorner(nc, n) = Bm * Cm;
-        Acl.bottomRightCorner(nc, nc) = loop.Ac;
+        Acl.bottomRightCorner(nc, nc) = Ac;
     }
     Eigen::EigenSolver<Eigen::MatrixXd> es(Acl, false);
     std::vector<Mode> out;

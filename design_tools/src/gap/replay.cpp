@@ -58,18 +58,13 @@ ReplaySetup make_replay_setup(const NominalModel& m, const Signals& data, const 
     }
     s.x0 = Cc.completeOrthogonalDecomposition().solve(y0);
     if (m.closed_loop) {
-        // Controller state in steady state with the first reference and measurement, when one exists.
-        const Eigen::Index nc = m.loop.Ac.rows();
-        Eigen::VectorXd w(m.loop.Bc.cols());
-        for (size_t j = 0; j < m.loop.references.size(); ++j) w(Eigen::Index(j)) = s.exo(0, Eigen::Index(j));
-        for (size_t j = 0; j < m.loop.measured.size(); ++j)
-            w(Eigen::Index(m.loop.references.size() + j)) = m.C.row(m.loop.measured[j]).dot(s.x0);
-        s.xc0 = Eigen::VectorXd::Zero(nc);
-        if (nc > 0) {
-            const Eigen::MatrixXd IA = Eigen::MatrixXd::Identity(nc, nc) - m.loop.Ac;
-            Eigen::FullPivLU<Eigen::MatrixXd> lu(IA);
-            if (lu.isInvertible()) s.xc0 = lu.solve(m.loop.Bc * w);
-        }
+        // The controller at the first sample: first references, measured outputs of x0.
+        std::vector<double> r0(m.loop.references.size()), y0(m.loop.measured.size());
+        for (size_t j = 0; j < r0.size(); ++j) r0[j] = s.exo(0, Eigen::Index(j));
+        for (size_t j = 0; j < y0.size(); ++j) y0[j] = m.C.row(m.loop.measured[j]).dot(s.x0);
+        std::unique_ptr<Controller> c = m.loop.controller->clone();
+        c->start(r0.data(), y0.data());
+        s.controller0 = std::move(c);
     }
     return s;
 }
@@ -212,12 +207,12 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     tr.u.resize(N);
     tr.v.resize(N);
     std::vector<double> x(s.x0.data(), s.x0.data() + nx), xn(static_cast<size_t>(nx));
-    std::vector<double> xc(s.xc0.data(), s.xc0.data() + s.xc0.size()), xcn(xc.size());
-    const int ncs = int(xc.size());
+    std::unique_ptr<Controller> ctl = m.closed_loop ? s.controller0->clone() : nullptr;
     std::vector<double> ytrue(static_cast<size_t>(ny)), ysens(static_cast<size_t>(ny)), yraw(static_cast<size_t>(ny)),
         u(static_cast<size_t>(nu)),
         up(static_cast<size_t>(nu));
-    std::vector<double> w(m.closed_loop ? static_cast<size_t>(m.loop.Bc.cols()) : 0), cvec(static_cast<size_t>(nu));
+    std::vector<double> rk(m.closed_loop ? m.loop.references.size() : 0), ym(m.closed_loop ? m.loop.measured.size() : 0),
+        cvec(static_cast<size_t>(nu));
     double eta[2] = {0, 0};
     double bl_out = 0.0;
     History h_out, h_in, h_ctl;
@@ -290,21 +285,9 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
         for (int j = 0; j < nx; ++j) v += cv[size_t(j)] * x[size_t(j)];
         if (m.closed_loop) {
             plant_outputs(false);
-            for (int j = 0; j < nr; ++j) w[size_t(j)] = s.exo(k, j);
-            for (size_t j = 0; j < m.loop.measured.size(); ++j) w[size_t(nr) + j] = ysens[size_t(m.loop.measured[j])];
-            for (int i = 0; i < nu; ++i) {
-                double acc = 0;
-                for (int j = 0; j < ncs; ++j) acc += m.loop.Cc(i, j) * xc[size_t(j)];
-                for (size_t j = 0; j < w.size(); ++j) acc += m.loop.Dc(i, Eigen::Index(j)) * w[j];
-                cvec[size_t(i)] = acc;
-            }
-            for (int i = 0; i < ncs; ++i) {
-                double acc = 0;
-                for (int j = 0; j < ncs; ++j) acc += m.loop.Ac(i, j) * xc[size_t(j)];
-                for (size_t j = 0; j < w.size(); ++j) acc += m.loop.Bc(i, Eigen::Index(j)) * w[j];
-                xcn[size_t(i)] = acc;
-            }
-            xc.swap(xcn);
+            for (int j = 0; j < nr; ++j) rk[size_t(j)] = s.exo(k, j);
+            for (size_t j = 0; j < ym.size(); ++j) ym[j] = ysens[size_t(m.loop.measured[j])];
+            ctl->step(rk.data(), ym.data(), cvec.data());
             if (h_ctl.len == 0) h_ctl.init(nu, m.loop.delay_samples + 1, cvec.data());
             h_ctl.push(cvec.data());
             const double* cd = m.loop.delay_samples > 0 ? h_ctl.lagged(m.loop.delay_samples + 1) : cvec.data();

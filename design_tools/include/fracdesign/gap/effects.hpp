@@ -7,6 +7,7 @@
 // their own units). The fixed effect names are the ones of issue 10.
 #pragma once
 #include <Eigen/Dense>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -141,7 +142,8 @@ struct ReplaySetup {
     const NominalModel* model = nullptr;
     Eigen::MatrixXd exo;               // samples x (plant inputs) open loop, or x (references + additive) closed loop
     Eigen::VectorXd x0;                // initial plant state
-    Eigen::VectorXd xc0;               // initial controller state
+    // The controller started at the first sample (closed loop; each replay runs a clone).
+    std::shared_ptr<const Controller> controller0;
     std::vector<int> compared;         // model output index of each compared output
     // The record's compared outputs (samples x compared): a quantizing
     // sensor's reading stands for its cell, so the quantization effect

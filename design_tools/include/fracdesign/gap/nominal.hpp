@@ -14,9 +14,12 @@
 #include <Eigen/Dense>
 #include <limits>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include "fracdesign/gap/controller.hpp"
 
 namespace fracdesign {
 namespace gap {
@@ -24,7 +27,9 @@ namespace gap {
 struct ClosedLoop {
     std::vector<std::string> references;  // data columns, the controller's reference inputs
     std::vector<int> measured;            // model output indices fed back to the controller
-    Eigen::MatrixXd Ac, Bc, Cc, Dc;       // discrete at Ts; inputs [references; measured]; outputs = plant inputs
+    // The controller at its document parameters; each replay runs its own
+    // clone (controller.hpp). Inputs [references; measured], outputs = plant inputs.
+    std::shared_ptr<const Controller> controller;
     int delay_samples = 0;                // pure delay between controller and plant (computation delay)
     double saturation = std::numeric_limits<double>::infinity();  // symmetric limit on the plant inputs
     // Data columns added to the plant inputs after the saturation, the i-th to
@@ -78,8 +83,9 @@ struct NominalModel {
     std::map<std::string, std::string> units;  // gap.units: signal name -> unit (optional, for the report)
 
     int output_index(const std::string& name) const;  // -1 if absent
-    // Oscillatory and real modes of the nominal (loop closed when closed_loop,
-    // controller delay and saturation left out), as continuous-time equivalents.
+    // Oscillatory and real modes of the nominal (loop closed when closed_loop
+    // and the controller has a small-signal state space, controller delay and
+    // limits left out), as continuous-time equivalents.
     std::vector<Mode> modes() const;
 };
 
@@ -87,8 +93,17 @@ struct NominalModel {
 // plant (and controller) with zero-order hold at Ts. std::runtime_error with
 // one clear message for a malformed document (dimensions, names, schema,
 // an irrational model kind).
-NominalModel nominal_from_json(const nlohmann::json& doc, double Ts);
+// `base_dir` is where tables a controller names by a relative path are
+// looked up (load_nominal_model: the document's directory).
+NominalModel nominal_from_json(const nlohmann::json& doc, double Ts, const std::string& base_dir = ".");
 NominalModel load_nominal_model(const std::string& path, double Ts);
+
+// Reads the state space (A, B, C, D) of a document object with m inputs and
+// p outputs ("time": "continuous", discretised with zero-order hold at Ts,
+// or "discrete" with its "Ts" equal to Ts); std::runtime_error naming
+// `where` and the matrix on a malformed object.
+void read_statespace(const nlohmann::json& j, Eigen::Index m, Eigen::Index p, double Ts, const std::string& where,
+                     Eigen::MatrixXd& A, Eigen::MatrixXd& B, Eigen::MatrixXd& C, Eigen::MatrixXd& D);
 
 // Zero-order-hold discretisation: Ad = e^{A Ts}, Bd = int_0^Ts e^{A s} ds B.
 void zoh(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, double Ts, Eigen::MatrixXd& Ad, Eigen::MatrixXd& Bd);
