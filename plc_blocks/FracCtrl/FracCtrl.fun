@@ -3,7 +3,9 @@
    a rising edge of Enable or of Update (re)loads Parameters; Active or
    Valid TRUE = outputs usable; Busy TRUE while enabled and working; Error
    TRUE with StatusID (FracCtrl.var) on a failure; Enable FALSE resets the
-   outputs and sets StatusID = fracSTAT_DISABLED. *)
+   outputs and sets StatusID = fracSTAT_DISABLED. Update is declared right
+   after Enable (TrajLUT: then Run and Restart), so that a body reads the
+   BOOL pins deciding its steady path in one load (fracctrl_status.h). *)
 
 FUNCTION_BLOCK Watchdog (*Stale-sensor detection and fault reaction: on a stale sensor or a non-finite torque the torque ramps to zero (seed 004, 8.6 HIL notes: IMU over asynchronous CAN)*)
 	VAR_INPUT

@@ -75,8 +75,8 @@ UDINT fracctrl_spare_bank(const FracFbStateType *fb, UDINT bank);
 /*
  * Marks a block's own function that runs only off the steady path (edges,
  * parameter loads): kept out of line, so that the steady path does not
- * carry its register set-up. Only a code-placement hint; empty for
- * compilers without the GNU attribute.
+ * carry its register set-up. Only an inlining hint (no effect on what a
+ * call does); empty for compilers without the GNU attribute.
  */
 #if defined(__GNUC__)
 #define FRACCTRL_COLD __attribute__((noinline))
