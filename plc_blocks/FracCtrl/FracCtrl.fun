@@ -3,13 +3,15 @@
    a rising edge of Enable or of Update (re)loads Parameters; Active or
    Valid TRUE = outputs usable; Busy TRUE while enabled and working; Error
    TRUE with StatusID (FracCtrl.var) on a failure; Enable FALSE resets the
-   outputs and sets StatusID = fracSTAT_DISABLED. *)
+   outputs and sets StatusID = fracSTAT_DISABLED. Update is declared right
+   after Enable (TrajLUT: then Run and Restart), so that a body reads the
+   BOOL pins deciding its steady path in one load (fracctrl_status.h). *)
 
 FUNCTION_BLOCK Watchdog (*Stale-sensor detection and fault reaction: on a stale sensor or a non-finite torque the torque ramps to zero (seed 004, 8.6 HIL notes: IMU over asynchronous CAN)*)
 	VAR_INPUT
 		Enable : BOOL; (*Run the block*)
-		Parameters : WatchdogParType; (*Limits and ramp*)
 		Update : BOOL; (*Rising edge: take over Parameters*)
+		Parameters : WatchdogParType; (*Limits and ramp*)
 		SampleCounter : UDINT; (*Incremented by the sensor task for every new sample*)
 		TorqueIn : REAL; (*Torque setpoint from the controller [Nm]*)
 		Acknowledge : BOOL; (*Rising edge: clear a latched fault once the sensor is fresh*)
@@ -32,8 +34,8 @@ END_FUNCTION_BLOCK
 FUNCTION_BLOCK LUT1D (*1-D lookup table y = f(x), linear or monotone cubic (frac/lut.h); feedforward tables of seed 004 Sec. 6.4*)
 	VAR_INPUT
 		Enable : BOOL;
-		Parameters : LUT1DParType;
 		Update : BOOL; (*Rising edge: take over Parameters*)
+		Parameters : LUT1DParType;
 		X : REAL; (*Query point*)
 	END_VAR
 	VAR_OUTPUT
@@ -52,8 +54,8 @@ END_FUNCTION_BLOCK
 FUNCTION_BLOCK LUT2D (*2-D bilinear lookup table y = f(x1, x2) (frac/lut.h)*)
 	VAR_INPUT
 		Enable : BOOL;
-		Parameters : LUT2DParType;
 		Update : BOOL;
+		Parameters : LUT2DParType;
 		X1 : REAL;
 		X2 : REAL;
 	END_VAR
@@ -73,8 +75,8 @@ END_FUNCTION_BLOCK
 FUNCTION_BLOCK FrictionComp (*Static friction compensation torque (seed 004 (5.2)-(5.4), sgn replaced by tanh(K v)) (frac/friction.h)*)
 	VAR_INPUT
 		Enable : BOOL;
-		Parameters : FrictionCompParType;
 		Update : BOOL;
+		Parameters : FrictionCompParType;
 		Velocity : REAL; (*Motor velocity, driven side [rad/s]*)
 	END_VAR
 	VAR_OUTPUT
@@ -86,6 +88,7 @@ FUNCTION_BLOCK FrictionComp (*Static friction compensation torque (seed 004 (5.2
 	END_VAR
 	VAR
 		Fb : FracFbStateType;
+		Out : FracReal; (*libfrac torque of the last call*)
 		Friction : FracFrictionObj;
 	END_VAR
 END_FUNCTION_BLOCK
@@ -93,8 +96,8 @@ END_FUNCTION_BLOCK
 FUNCTION_BLOCK LQGDelay (*State-difference LQG with delay registers and friction state (seed 004 (6.45), (7.18)-(7.27)) (frac/lqg.h)*)
 	VAR_INPUT
 		Enable : BOOL;
-		Parameters : LQGDelayParType;
 		Update : BOOL; (*Rising edge: take over Parameters (the estimate restarts at 0)*)
+		Parameters : LQGDelayParType;
 		Reset : BOOL; (*Rising edge: estimate back to 0*)
 		UStar : REAL; (*Feedforward torque, already sent Di samples early [Nm]*)
 		YRef : ARRAY[0..2] OF REAL; (*References of the measured outputs, delayed ones delayed by Do*)
@@ -120,10 +123,10 @@ END_FUNCTION_BLOCK
 FUNCTION_BLOCK TrajLUT (*Trajectory playback with per-channel lead/lag (seed 004 Sec. 6.4, 8.6) (frac/trajlut.h)*)
 	VAR_INPUT
 		Enable : BOOL;
-		Parameters : TrajLUTParType;
 		Update : BOOL; (*Rising edge: take over Parameters (playback restarts at cycle 0)*)
 		Run : BOOL; (*TRUE: advance one cycle per call (the thesis's run-time counter); FALSE: hold the current cycle*)
 		Restart : BOOL; (*Rising edge: back to cycle 0*)
+		Parameters : TrajLUTParType;
 	END_VAR
 	VAR_OUTPUT
 		Valid : BOOL;
@@ -137,6 +140,9 @@ FUNCTION_BLOCK TrajLUT (*Trajectory playback with per-channel lead/lag (seed 004
 	VAR
 		Fb : FracFbStateType;
 		RestartOld : BOOL;
+		SteadyPins : UDINT; (*Enable + 256 (Update + 256 (Run + 256 Restart)) of a call that only plays (Fb steady, Restart unchanged), 0 otherwise*)
+		Out : ARRAY[0..7] OF FracReal; (*libfrac values of the last call; the channels the set in effect does not play hold Y*)
+		OutSegment : DINT; (*libfrac segment of the last call*)
 		Traj : FracTrajLutObj;
 	END_VAR
 END_FUNCTION_BLOCK
@@ -144,9 +150,9 @@ END_FUNCTION_BLOCK
 FUNCTION_BLOCK ParTable (*Validates the binary parameter table emitted by fracdesign table: magic, version, size, CRC32, layout, dimensions, finiteness (frac/ptable.h)*)
 	VAR_INPUT
 		Enable : BOOL; (*Rising edge: validate the data object*)
+		Update : BOOL; (*Rising edge: validate again (a new data object was loaded)*)
 		pData : REFERENCE TO USINT; (*Bytes of the data object*)
 		Size : UDINT; (*Bytes available at pData*)
-		Update : BOOL; (*Rising edge: validate again (a new data object was loaded)*)
 	END_VAR
 	VAR_OUTPUT
 		Valid : BOOL; (*The table passed every check; Handle may be read*)
@@ -166,8 +172,8 @@ END_FUNCTION_BLOCK
 FUNCTION_BLOCK FracOp (*Fractional operator s^r with a choice of realization: GL, Oustaloup, refined Oustaloup, CFE (frac/fo_op.h)*)
 	VAR_INPUT
 		Enable : BOOL;
-		Parameters : FracOpParType;
 		Update : BOOL; (*Rising edge: take over Parameters (state restarts at 0)*)
+		Parameters : FracOpParType;
 		Reset : BOOL; (*Rising edge: zero input history*)
 		X : REAL; (*Input*)
 	END_VAR
@@ -190,8 +196,8 @@ END_FUNCTION_BLOCK
 FUNCTION_BLOCK FOPID (*Fractional PI^lambda D^mu controller with derivative filter, limits, anti-windup and manual mode; FO-PI, FO-PD and the Delta = 1/K variant of seed 001 (frac/fopid.h)*)
 	VAR_INPUT
 		Enable : BOOL;
-		Parameters : FOPIDParType;
 		Update : BOOL; (*Rising edge: take over Parameters (state restarts at 0)*)
+		Parameters : FOPIDParType;
 		Reset : BOOL; (*Rising edge: zero state*)
 		W : REAL; (*Set point*)
 		X : REAL; (*Actual value*)
@@ -219,8 +225,8 @@ END_FUNCTION_BLOCK
 FUNCTION_BLOCK FracDamp (*Collocated fractional damping law with prefilter, seed 002: Y = F(s) W - C(s) X (frac/fodamp.h)*)
 	VAR_INPUT
 		Enable : BOOL;
-		Parameters : FracDampParType;
 		Update : BOOL; (*Rising edge: take over Parameters (state restarts at 0)*)
+		Parameters : FracDampParType;
 		Reset : BOOL; (*Rising edge: zero state*)
 		W : REAL; (*Reference: tip angle theta_2^* [rad]*)
 		X : REAL; (*Collocated measurement: base moment Gamma_c [Nm]*)

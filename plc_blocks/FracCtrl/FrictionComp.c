@@ -49,15 +49,15 @@ static void friction_hold(void *vinst, int disabled)
 
 static const fracctrl_block friction_block = {friction_load, friction_hold};
 
+/* The libfrac result goes to Out, in the instance: the body needs no stack frame. */
 void FrictionComp(struct FrictionComp* inst)
 {
     int st;
-    frac_real tau;
 
     if (!FRACCTRL_ENTER(&friction_block, inst)) {
         return;
     }
-    st = frac_friction_eval(FracFrictionObj_C(inst->Friction), (frac_real)inst->Velocity, &tau);
-    inst->Torque = (REAL)tau;
+    st = frac_friction_eval(FracFrictionObj_C(inst->Friction), (frac_real)inst->Velocity, &inst->Out);
+    inst->Torque = (REAL)inst->Out;
     FRACCTRL_OUTPUTS(inst, st);
 }

@@ -47,9 +47,15 @@ static int trajlut_load(void *vinst, int enable_edge)
     struct TrajLUT *inst = (struct TrajLUT *)vinst;
     frac_trajlut fresh;
     int st = trajlut_init(&inst->Parameters, &fresh);
+    size_t c;
     (void)enable_edge;
     if (st == FRAC_OK) {
         *FracTrajLutObj_C(inst->Traj) = fresh;
+        /* the channels the new set does not play keep their Y: the copy
+         * Out -> Y gives it back exactly (REAL -> frac_real -> REAL) */
+        for (c = fresh.channels; c < fracTRAJ_MAX_CHANNELS; c++) {
+            inst->Out[c] = (FracReal)inst->Y[c];
+        }
     }
     return st;
 }
@@ -71,28 +77,68 @@ static void trajlut_hold(void *vinst, int disabled)
 
 static const fracctrl_block trajlut_block = {trajlut_load, trajlut_hold};
 
-void TrajLUT(struct TrajLUT* inst)
-{
-    int st, seg;
-    frac_real y[fracTRAJ_MAX_CHANNELS];
-    size_t c;
+/*
+ * The four BOOL pins as one number, the key of SteadyPins (FracCtrl.fun
+ * declares them first and in this order, so the compiler reads them in one
+ * 32-bit load; the value does not depend on the layout).
+ */
+#define TRAJLUT_PINS(inst) \
+    ((UDINT)(inst)->Enable | (UDINT)(inst)->Update << 8 | (UDINT)(inst)->Run << 16 | (UDINT)(inst)->Restart << 24)
 
+/*
+ * The PLCopen sequence (fracctrl_enter) and the Restart edge. Sets
+ * SteadyPins to the pins when the next call with the same pins changes
+ * nothing but plays (FRACCTRL_STEADY, and Restart then equals RestartOld),
+ * else 0. Returns 0 when the block holds.
+ */
+static FRACCTRL_COLD int trajlut_enter(struct TrajLUT *inst, UDINT pins)
+{
+    inst->SteadyPins = 0;
     if (!FRACCTRL_ENTER(&trajlut_block, inst)) {
-        return;
+        return 0;
     }
     if (inst->Restart && !inst->RestartOld) {
         (void)frac_trajlut_seek(FracTrajLutObj_C(inst->Traj), 0);
     }
     inst->RestartOld = inst->Restart;
+    if (FRACCTRL_STEADY(&inst->Fb, inst->Enable, inst->Update)) {
+        inst->SteadyPins = pins;
+    }
+    return 1;
+}
+
+/*
+ * A call with the pins of SteadyPins (nonzero: Enable is 1 in it) skips
+ * trajlut_enter: the state it would leave is the one it left. The step
+ * writes the channels in play into Out, which holds Y in the others
+ * (trajlut_load), so Y is copied in two fixed, branch-free halves of
+ * fracTRAJ_MAX_CHANNELS / 2 channels (the second one only when the set
+ * plays more than that) instead of a loop over Channels.
+ */
+void TrajLUT(struct TrajLUT* inst)
+{
+    UDINT pins = TRAJLUT_PINS(inst);
+    int st;
+    size_t c;
+
+    if ((pins != inst->SteadyPins || pins == 0) && !trajlut_enter(inst, pins)) {
+        return;
+    }
     inst->Cycle = (UDINT)FracTrajLutObj_C(inst->Traj)->k;
-    if (inst->Run) {
-        st = frac_trajlut_step(FracTrajLutObj_C(inst->Traj), y, &seg);
+    if (!inst->Run) {
+        st = frac_trajlut_eval(FracTrajLutObj_C(inst->Traj), FracTrajLutObj_C(inst->Traj)->k, inst->Out,
+                               &inst->OutSegment);
     } else {
-        st = frac_trajlut_eval(FracTrajLutObj_C(inst->Traj), FracTrajLutObj_C(inst->Traj)->k, y, &seg);
+        st = frac_trajlut_step(FracTrajLutObj_C(inst->Traj), inst->Out, &inst->OutSegment);
     }
-    for (c = 0; c < FracTrajLutObj_C(inst->Traj)->channels; c++) {
-        inst->Y[c] = (REAL)y[c];
+    for (c = 0; c < fracTRAJ_MAX_CHANNELS / 2; c++) {
+        inst->Y[c] = (REAL)inst->Out[c];
     }
-    inst->Segment = (FracTrajSegmentEnum)seg;
+    if (FracTrajLutObj_C(inst->Traj)->channels > fracTRAJ_MAX_CHANNELS / 2) {
+        for (c = fracTRAJ_MAX_CHANNELS / 2; c < fracTRAJ_MAX_CHANNELS; c++) {
+            inst->Y[c] = (REAL)inst->Out[c];
+        }
+    }
+    inst->Segment = (FracTrajSegmentEnum)inst->OutSegment;
     FRACCTRL_OUTPUTS(inst, st);
 }

@@ -62,7 +62,7 @@ void Watchdog(struct Watchdog* inst)
     frac_real ramped;
 
     if (!FRACCTRL_STEADY(&in->Fb, inst->Enable, inst->Update)) {
-        phase = fracctrl_enter(&watchdog_block, inst, &in->Fb, inst->Enable, inst->Update, &inst->Active, &inst->Busy,
+        phase = fracctrl_enter(&watchdog_block, inst, &in->Fb, &inst->Enable, &inst->Update, &inst->Active, &inst->Busy,
                                &inst->Error, &inst->StatusID);
         if (phase == FRACCTRL_HOLD) {
             return;

@@ -20,9 +20,10 @@ UDINT fracctrl_spare_bank(const FracFbStateType *fb, UDINT bank)
     return fb->ParOk ? 1u - bank : bank;
 }
 
-int fracctrl_enter(const fracctrl_block *blk, void *inst, FracFbStateType *fb, BOOL enable, BOOL update,
-                   BOOL *valid, BOOL *busy, BOOL *error, UINT *status_id)
+int fracctrl_enter(const fracctrl_block *blk, void *inst, FracFbStateType *fb, const BOOL *enable_pin,
+                   const BOOL *update_pin, BOOL *valid, BOOL *busy, BOOL *error, UINT *status_id)
 {
+    BOOL enable = *enable_pin, update = *update_pin;
     int enable_edge, load;
     if (!enable) {
         fb->EnableOld = 0;

@@ -72,13 +72,27 @@ typedef struct fracctrl_block {
  */
 UDINT fracctrl_spare_bank(const FracFbStateType *fb, UDINT bank);
 
+/*
+ * Marks a block's own function that runs only off the steady path (edges,
+ * parameter loads): kept out of line, so that the steady path does not
+ * carry its register set-up. Only an inlining hint (no effect on what a
+ * call does); empty for compilers without the GNU attribute.
+ */
+#if defined(__GNUC__)
+#define FRACCTRL_COLD __attribute__((noinline))
+#else
+#define FRACCTRL_COLD
+#endif
+
 /* Results of fracctrl_enter. */
 #define FRACCTRL_HOLD 0    /* the block does not run: outputs are set, return */
 #define FRACCTRL_RUN 1     /* parameters in effect: run the step */
 #define FRACCTRL_STARTED 2 /* as FRACCTRL_RUN, on the rising edge of Enable */
 
 /*
- * The Enable/Update sequence up to the step:
+ * The Enable/Update sequence up to the step (the pins are passed by
+ * address: the steady path that calls it only when FRACCTRL_STEADY fails
+ * then needs no register for their values):
  * - Enable FALSE: edge memory and parameter state cleared, outputs
  *   all FALSE with StatusID fracSTAT_DISABLED, blk->hold(inst, 1);
  *   returns FRACCTRL_HOLD.
@@ -92,17 +106,19 @@ UDINT fracctrl_spare_bank(const FracFbStateType *fb, UDINT bank);
  *   (the outputs are left to the step and fracctrl_report).
  * Every call sets Fb.Steady and resets Fb.Reported.
  */
-int fracctrl_enter(const fracctrl_block *blk, void *inst, FracFbStateType *fb, BOOL enable, BOOL update,
-                   BOOL *valid, BOOL *busy, BOOL *error, UINT *status_id);
+int fracctrl_enter(const fracctrl_block *blk, void *inst, FracFbStateType *fb, const BOOL *enable,
+                   const BOOL *update, BOOL *valid, BOOL *busy, BOOL *error, UINT *status_id);
 
 /*
  * Fb.Steady after a call: the key of the pins (Enable 1, Update equal to
  * the edge memory) with which the next call changes nothing, or 0. The +1
  * keeps every key nonzero, so a zero-initialized instance is not steady.
  * Pins other than 0/1 never give a key a call can leave in Fb.Steady, so
- * they take fracctrl_enter.
+ * they take fracctrl_enter. FracCtrl.fun declares Update right after
+ * Enable in every block, so that the compiler reads both pins in one
+ * 16-bit load (the key's value does not depend on the layout).
  */
-#define FRACCTRL_KEY(enable, update) ((UDINT)(enable) + 256u * (UDINT)(update) + 1u)
+#define FRACCTRL_KEY(enable, update) (((UDINT)(enable) | (UDINT)(update) << 8) + 1u)
 
 /* Fb.Reported when the status outputs are not those of a step's status. */
 #define FRACCTRL_UNREPORTED 32767
@@ -161,7 +177,7 @@ void fracctrl_report(FracFbStateType *fb, int status, BOOL *valid, BOOL *busy, B
  */
 #define FRACCTRL_ENTER(blk, inst)                                                                   \
     (FRACCTRL_STEADY(&(inst)->Fb, (inst)->Enable, (inst)->Update)                                  \
-     || fracctrl_enter((blk), (inst), &(inst)->Fb, (inst)->Enable, (inst)->Update, &(inst)->Valid, \
+     || fracctrl_enter((blk), (inst), &(inst)->Fb, &(inst)->Enable, &(inst)->Update, &(inst)->Valid, \
                        &(inst)->Busy, &(inst)->Error, &(inst)->StatusID) != FRACCTRL_HOLD)
 #define FRACCTRL_OUTPUTS(inst, status) \
     FRACCTRL_REPORT(&(inst)->Fb, (status), (inst)->Valid, (inst)->Busy, (inst)->Error, (inst)->StatusID)

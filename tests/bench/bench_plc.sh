@@ -82,6 +82,6 @@ printf '%-44s %12s %12s %8s %10s\n' "Exp. D cycle: LQGDelay + TrajLUT" "$((blk_l
   "$((blk_lqg + blk_trajlut - dir_lqg - dir_trajlut))"
 echo "ratio = block / direct libfrac call on the same inputs (informative: the goal is per cycle, above)"
 echo "overhead = block Ir - libfrac Ir per call, here $omin..$omax Ir: the PLCopen interface (steady-state"
-echo "test of Enable/Update, REAL <-> frac_real conversion of each pin, status check, call frame), about"
-echo "23 Ir for a one-input block and more with more pins. It is within 10 % where the libfrac call costs"
+echo "test of Enable/Update, REAL <-> frac_real conversion of each pin, status check, call frame), 18-24"
+echo "Ir for a one-input block and more with more pins. It is within 10 % where the libfrac call costs"
 echo "ten times that; for the cheapest calls (a uniform-grid LUT of about 45 Ir) no ratio of 1.10 is reachable."

@@ -220,18 +220,18 @@ static void test_enter_says_started_only_on_the_enable_edge(void **state)
     (void)state;
     memset(&f, 0, sizeof f);
     f.Enable = 1;
-    assert_int_equal(fracctrl_enter(&fake_block, &f, &f.Fb, f.Enable, f.Update, &f.Valid, &f.Busy, &f.Error,
+    assert_int_equal(fracctrl_enter(&fake_block, &f, &f.Fb, &f.Enable, &f.Update, &f.Valid, &f.Busy, &f.Error,
                                     &f.StatusID),
                      FRACCTRL_STARTED);
     assert_int_equal(f.load_edge, 1);
     f.Update = 1;
-    assert_int_equal(fracctrl_enter(&fake_block, &f, &f.Fb, f.Enable, f.Update, &f.Valid, &f.Busy, &f.Error,
+    assert_int_equal(fracctrl_enter(&fake_block, &f, &f.Fb, &f.Enable, &f.Update, &f.Valid, &f.Busy, &f.Error,
                                     &f.StatusID),
                      FRACCTRL_RUN);
     assert_int_equal(f.loads, 2);
     assert_int_equal(f.load_edge, 0);
     f.Enable = 0;
-    assert_int_equal(fracctrl_enter(&fake_block, &f, &f.Fb, f.Enable, f.Update, &f.Valid, &f.Busy, &f.Error,
+    assert_int_equal(fracctrl_enter(&fake_block, &f, &f.Fb, &f.Enable, &f.Update, &f.Valid, &f.Busy, &f.Error,
                                     &f.StatusID),
                      FRACCTRL_HOLD);
     assert_int_equal(f.StatusID, fracSTAT_DISABLED);
