@@ -394,6 +394,10 @@ Signals record(const BenchCase& c, const Derived& d, bool noise)
 // from the record's own torque_actual must change, on some compared output, by kVisibleNoiseMultiple times
 // that output's floor: the noise std (gyro: the document's imu_noise; motor velocity: the wire step / sqrt 12)
 // and the nominal's own error on the effect-free record, rms-combined.
+struct InvisibleEffect : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
 struct Baseline {
     Eigen::MatrixXd residual;   // of the effect-free (or the effects so far) noise-free record
     std::vector<double> floor;  // per output
@@ -421,7 +425,7 @@ TruthEffect draw_visible(const std::string& e, BenchCase& c, const Derived& d, c
             return c.truth.back();
         }
     }
-    throw std::runtime_error("gap-bench: family arm: no visible size of '" + e + "' in " + std::to_string(kVisibleDraws) +
+    throw InvisibleEffect("gap-bench: family arm: no visible size of '" + e + "' in " + std::to_string(kVisibleDraws) +
                              " draws (case " + std::to_string(c.id) + ")");
 }
 
@@ -442,37 +446,48 @@ BenchCase draw(const BenchOptions& opt, int id)
     hil_rng rng;
     hil_rng_seed(&rng, c.seed);
     // A document the design refuses (reduction, unstable loop, feedforward beyond the peak torque or not at
-    // rest where the table starts) is redrawn, as a user would change it.
+    // rest where the table starts) is redrawn, as a user would change it; so is a document on which no size
+    // of the drawn effect is visible (e.g. one IMU latency step on a slow arm).
+    const std::vector<std::string>& labels = arm_labels();
+    const std::string first = drawn_label(labels, opt.seed, id);
     Derived d;
-    Signals free;
     std::string why;
     for (int i = 0;; ++i) {
         if (i == kDocumentDraws)
-            throw std::runtime_error("gap-bench: family arm: case " + std::to_string(id) + ": the design refused " +
-                                     std::to_string(kDocumentDraws) + " documents, the last: " + why);
+            throw std::runtime_error("gap-bench: family arm: case " + std::to_string(id) + ": " +
+                                     std::to_string(kDocumentDraws) + " documents refused, the last: " + why);
         c.plant = draw_parameters(&rng);
+        c.truth.clear();
+        Signals free;
         try {
             d = derive(c);
             free = record(c, d, false);
-            if (usable(free)) break;
-            why = "the effect-free rig run faulted";
         } catch (const std::exception& e) {
             why = e.what();
+            continue;
         }
-    }
-    const Eigen::MatrixXd effect_free = nominal_residual(d.nominal, free);
-    const auto col = [&](const char* n) {
-        for (size_t i = 0; i < free.names.size(); ++i)
-            if (free.names[i] == n) return free.values.col(Eigen::Index(i)).cwiseAbs().maxCoeff();
-        throw std::logic_error("gap-bench: family arm: no column " + std::string(n));
-    };
-    const Scales s{col("torque_actual"), col("motor_velocity"), col("imu_rate")};
-    const std::vector<std::string>& labels = arm_labels();
-    const std::string first = drawn_label(labels, opt.seed, id);
-    if (first != "none") {
-        draw_visible(first, c, d, s, effect_free, &rng);
-        if (hil_rng_uniform(&rng) < opt.two_effect_prob)
-            draw_visible(second_label(labels, first, &rng), c, d, s, effect_free, &rng);
+        if (!usable(free)) {
+            why = "the effect-free rig run faulted";
+            continue;
+        }
+        const Eigen::MatrixXd effect_free = nominal_residual(d.nominal, free);
+        const auto col = [&](const char* n) {
+            for (size_t k = 0; k < free.names.size(); ++k)
+                if (free.names[k] == n) return free.values.col(Eigen::Index(k)).cwiseAbs().maxCoeff();
+            throw std::logic_error("gap-bench: family arm: no column " + std::string(n));
+        };
+        const Scales s{col("torque_actual"), col("motor_velocity"), col("imu_rate")};
+        try {
+            if (first != "none") {
+                draw_visible(first, c, d, s, effect_free, &rng);
+                if (hil_rng_uniform(&rng) < opt.two_effect_prob)
+                    draw_visible(second_label(labels, first, &rng), c, d, s, effect_free, &rng);
+            }
+        } catch (const InvisibleEffect& e) {
+            why = e.what();
+            continue;
+        }
+        break;
     }
     c.scenario = scenario_text(c, d, true);
     for (const TruthEffect& t : c.truth)
