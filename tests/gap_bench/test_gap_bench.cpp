@@ -221,7 +221,8 @@ TEST(GapBenchCli, usage_errors_exit_2_with_one_line)
 {
     namespace fs = std::filesystem;
     const fs::path err = fs::temp_directory_path() / ("gap_bench_err_" + std::to_string(::getpid()) + ".txt");
-    for (const std::string args : {"--cases 0", "--cases 3 --replay 3", "--seed -1", "--duration 0.1", "--bogus 1", "--family wobble"}) {
+    for (const std::string args : {"--cases 0", "--cases 3 --replay 3", "--seed -1", "--duration 0.1", "--bogus 1", "--family wobble",
+                                   "--require-accuracy 1.5", "--require-accuracy -0.1"}) {
         const std::string cmd = std::string(GAP_BENCH_EXE) + " " + args + " > /dev/null 2> " + err.string();
         const int rc = std::system(cmd.c_str());
         ASSERT_TRUE(WIFEXITED(rc)) << args;
@@ -271,6 +272,19 @@ TEST(GapBenchCli, require_goals_exits_1_when_a_goal_is_missed)
     rc = std::system((base + " --json --noise 2 > /dev/null").c_str());
     EXPECT_EQ(WEXITSTATUS(rc), 1);
     rc = std::system((std::string(GAP_BENCH_EXE) + " --cases 3 --seed 1 --duration 1.2 --noise 2 > /dev/null").c_str());
+    EXPECT_EQ(WEXITSTATUS(rc), 0);
+}
+
+// --require-accuracy A exits 1 when the top-1 accuracy is below A and 0 when
+// it is not (CTest gap_bench_arm holds the arm family to its floor with it).
+TEST(GapBenchCli, require_accuracy_exits_1_below_the_floor_and_0_at_or_above_it)
+{
+    const std::string base = std::string(GAP_BENCH_EXE) + " --cases 3 --seed 1 --duration 1.2 --noise 2";
+    int rc = std::system((base + " --require-accuracy 0.9 > /dev/null").c_str());
+    ASSERT_TRUE(WIFEXITED(rc));
+    EXPECT_EQ(WEXITSTATUS(rc), 1);
+    rc = std::system((base + " --require-accuracy 0 > /dev/null").c_str());
+    ASSERT_TRUE(WIFEXITED(rc));
     EXPECT_EQ(WEXITSTATUS(rc), 0);
 }
 
