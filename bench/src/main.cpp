@@ -111,7 +111,7 @@ const char* const kHelp =
     "usage: gap-bench [--family twomass|servo|foprocess|arm] [--cases N] [--seed S] [--json]\n"
     "                 [--out DIR] [--replay CASE_ID] [--duration 2.4] [--noise 0.005]\n"
     "                 [--require-goals] [--require-accuracy A]\n\n"
-    "For each case of the family draws the plant's parameters (servo, foprocess), an\n"
+    "For each case of the family draws the plant's parameters (servo, foprocess, arm), an\n"
     "effect (each of the family's labels equally often, in shuffled rounds; sometimes\n"
     "a second effect) and its size, and simulates the record with it switched on:\n"
     "  twomass    seed 004 two-mass drive on the lockstep HIL rig (in-process), drive\n"
