@@ -7,7 +7,7 @@ namespace fracbench {
 
 const std::vector<Family>& families()
 {
-    static const std::vector<Family> v = {twomass_family(), servo_family(), foprocess_family()};
+    static const std::vector<Family> v = {twomass_family(), servo_family(), foprocess_family(), arm_family()};
     return v;
 }
 

@@ -560,9 +560,11 @@ void write_case_files(const std::filesystem::path& dir, const CaseRun& r)
     };
     put("scenario.txt", "# gap-bench family " + r.draw.family + " case " + std::to_string(r.draw.id) +
                             (r.draw.family == "twomass" ? ": rig configuration (the controller is gap-bench's PD law, not a scenario key)\n"
+                             : r.draw.family == "arm"   ? ": hil_bench scenario (fracdesign model --arm --save-scenario) with the case's injection\n"
                                                         : ": plant, controller and injection of the bench's simulator\n") +
                             r.draw.scenario);
     put("nominal.json", r.nominal.dump(1) + "\n");
+    for (const auto& f : r.files) put(f.first, f.second);
     put("truth.json", truth_json(r.draw.truth).dump(2) + "\n");
     nlohmann::json res = result_json(r.result);
     put("result.json", res.dump(2) + "\n");

@@ -13,12 +13,15 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <sstream>
 
 #include "fracbench/families.hpp"
 #include "fracbench/gap_bench.hpp"
 #include "fracbench/visibility.hpp"
+#include "fracdesign/design/arm_design.hpp"
+#include "fracdesign/models/arm_document.hpp"
 
 using namespace fracbench;
 using namespace fracdesign::gap;
@@ -218,7 +221,8 @@ TEST(GapBenchCli, usage_errors_exit_2_with_one_line)
 {
     namespace fs = std::filesystem;
     const fs::path err = fs::temp_directory_path() / ("gap_bench_err_" + std::to_string(::getpid()) + ".txt");
-    for (const std::string args : {"--cases 0", "--cases 3 --replay 3", "--seed -1", "--duration 0.1", "--bogus 1", "--family wobble"}) {
+    for (const std::string args : {"--cases 0", "--cases 3 --replay 3", "--seed -1", "--duration 0.1", "--bogus 1", "--family wobble",
+                                   "--require-accuracy 1.5", "--require-accuracy -0.1"}) {
         const std::string cmd = std::string(GAP_BENCH_EXE) + " " + args + " > /dev/null 2> " + err.string();
         const int rc = std::system(cmd.c_str());
         ASSERT_TRUE(WIFEXITED(rc)) << args;
@@ -268,6 +272,19 @@ TEST(GapBenchCli, require_goals_exits_1_when_a_goal_is_missed)
     rc = std::system((base + " --json --noise 2 > /dev/null").c_str());
     EXPECT_EQ(WEXITSTATUS(rc), 1);
     rc = std::system((std::string(GAP_BENCH_EXE) + " --cases 3 --seed 1 --duration 1.2 --noise 2 > /dev/null").c_str());
+    EXPECT_EQ(WEXITSTATUS(rc), 0);
+}
+
+// --require-accuracy A exits 1 when the top-1 accuracy is below A and 0 when
+// it is not (CTest gap_bench_arm holds the arm family to its floor with it).
+TEST(GapBenchCli, require_accuracy_exits_1_below_the_floor_and_0_at_or_above_it)
+{
+    const std::string base = std::string(GAP_BENCH_EXE) + " --cases 3 --seed 1 --duration 1.2 --noise 2";
+    int rc = std::system((base + " --require-accuracy 0.9 > /dev/null").c_str());
+    ASSERT_TRUE(WIFEXITED(rc));
+    EXPECT_EQ(WEXITSTATUS(rc), 1);
+    rc = std::system((base + " --require-accuracy 0 > /dev/null").c_str());
+    ASSERT_TRUE(WIFEXITED(rc));
     EXPECT_EQ(WEXITSTATUS(rc), 0);
 }
 
@@ -363,7 +380,7 @@ TEST(GapBenchFamilies, an_unknown_family_is_refused_naming_the_allowed_ones)
     } catch (const std::invalid_argument& e) {
         const std::string m = e.what();
         EXPECT_NE(m.find("wobble"), std::string::npos) << m;
-        for (const char* n : {"twomass", "servo", "foprocess"}) EXPECT_NE(m.find(n), std::string::npos) << m;
+        for (const char* n : {"twomass", "servo", "foprocess", "arm"}) EXPECT_NE(m.find(n), std::string::npos) << m;
     }
 }
 
@@ -377,4 +394,111 @@ TEST(GapBenchVisibility, is_the_largest_rms_change_in_noise_stds_and_refuses_bad
     EXPECT_THROW(visibility(b, a, {0.1}), std::invalid_argument);
     EXPECT_THROW(visibility(b, Eigen::MatrixXd::Zero(3, 2), {0.1, 0.1}), std::invalid_argument);
     EXPECT_THROW(visibility(b, a, {0.1, 0.0}), std::invalid_argument);
+}
+
+// ---- the arm family (issue 17 item 7: the arm of the "your own arm" issue) --
+
+namespace {
+
+double column_max_abs_diff(const Signals& a, const Signals& b, const std::string& name)
+{
+    auto col = [&](const Signals& s) {
+        for (size_t i = 0; i < s.names.size(); ++i)
+            if (s.names[i] == name) return Eigen::VectorXd(s.values.col(Eigen::Index(i)));
+        ADD_FAILURE() << "no column " << name;
+        return Eigen::VectorXd();
+    };
+    const Eigen::VectorXd x = col(a), y = col(b);
+    if (x.size() != y.size() || x.size() == 0) return std::numeric_limits<double>::infinity();
+    return (x - y).cwiseAbs().maxCoeff();
+}
+
+}  // namespace
+
+// Each case draws a new arm document that the project's reader accepts, every
+// label once per round, deterministically; the injection keys are in the
+// case's scenario and the mapped parameters are the diagnosis's names.
+TEST(GapBenchArm, draws_a_valid_document_per_case_every_label_per_round_and_diagnosis_parameters)
+{
+    const Family& f = family("arm");
+    BenchOptions opt;
+    opt.family = "arm";
+    opt.seed = 5;
+    std::set<std::string> first;
+    std::set<double> lengths;
+    const int L = int(f.labels.size());
+    for (int id = 0; id < L; ++id) {
+        const BenchCase a = f.draw(opt, id);
+        EXPECT_EQ(a.family, "arm");
+        const fracdesign::ArmDocument doc = fracdesign::arm_from_json(arm_document_of(a));
+        EXPECT_GT(doc.payload_mass, 0.0);
+        EXPECT_LE(doc.dout, 4);
+        lengths.insert(a.plant.at("link.length"));
+        EXPECT_NE(a.plant.at("link.length"), 0.9) << "not arm_b itself";
+        first.insert(a.truth.empty() ? "none" : a.truth[0].effect);
+        for (const TruthEffect& t : a.truth) {
+            ASSERT_FALSE(t.rig.empty()) << t.effect;
+            ASSERT_FALSE(t.params.empty()) << t.effect;
+            const std::vector<std::string> pn = param_names(effect_from_name(t.effect), {"motor_velocity", "imu_rate"});
+            for (const TruthParam& p : t.params)
+                EXPECT_NE(std::find(pn.begin(), pn.end(), p.name), pn.end()) << t.effect << " " << p.name;
+            for (const auto& kv : t.rig) {
+                // plant_document.F: the plant table is built with the document's field F (a comment line)
+                const std::string k = kv.first.rfind("plant_document.", 0) == 0 ? kv.first.substr(15) : kv.first;
+                EXPECT_NE(a.scenario.find(k + " = " + kv.second), std::string::npos) << kv.first;
+            }
+        }
+    }
+    EXPECT_EQ(int(first.size()), L);
+    EXPECT_EQ(int(lengths.size()), L) << "the document must change from case to case";
+    const BenchCase x = f.draw(opt, 2), y = f.draw(opt, 2);
+    EXPECT_EQ(x.scenario, y.scenario);
+    EXPECT_EQ(x.plant, y.plant);
+}
+
+// The run injects what the truth keys say (a drive gain), the diagnosis finds
+// it; an unknown rig key is refused.
+TEST(GapBenchArm, the_run_injects_what_the_truth_keys_say)
+{
+    const Family& f = family("arm");
+    BenchOptions opt;
+    opt.family = "arm";
+    opt.seed = 2;
+    BenchCase c = f.draw(opt, 0);
+    c.truth = {{"gain_error", {{"drive.gain", "1.25"}}, {{"gain", 1.25}}}};
+    const CaseRun r = f.run(opt, c);
+    ASSERT_FALSE(r.outcome.verdict.empty());
+    EXPECT_EQ(r.outcome.verdict[0], "gain_error");
+    EXPECT_NEAR(r.outcome.verdict_params[0].at("gain"), 1.25, 0.02);
+    EXPECT_GE(r.outcome.shrink, 0.8);
+    c.truth = {{"gain_error", {{"drive.wobble", "1.25"}}, {{"gain", 1.25}}}};
+    EXPECT_THROW(f.run(opt, c), std::invalid_argument);
+}
+
+// The case files are what a user has: `hil_bench --scenario scenario.txt` in
+// the case directory (arm.json's plant.bin and ctrl.bin) records the same
+// signals as the bench's in-process rig, and the nominal is the document's
+// `fracdesign model --arm --gap-nominal`.
+TEST(GapBenchArm, hil_bench_reruns_the_case_files_to_the_same_record)
+{
+    namespace fs = std::filesystem;
+    BenchOptions opt;
+    opt.family = "arm";
+    opt.cases = 1;
+    opt.seed = 3;
+    opt.out_dir = (fs::temp_directory_path() / ("gap_bench_arm_out_" + std::to_string(::getpid()))).string();
+    run_bench(opt, nullptr);
+    const fs::path d = fs::path(opt.out_dir) / "case_000";
+    for (const char* file : {"arm.json", "plant.bin", "ctrl.bin", "scenario.txt", "signals.csv", "nominal.json"})
+        ASSERT_TRUE(fs::exists(d / file)) << file;
+    const std::string cmd = "cd " + d.string() + " && " + HIL_BENCH_EXE + " --scenario scenario.txt --out rerun > /dev/null";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    const Signals a = load_signals((d / "signals.csv").string()), b = load_signals((d / "rerun" / "signals.csv").string());
+    for (const char* n : {"torque_actual", "motor_velocity", "imu_rate"}) EXPECT_EQ(column_max_abs_diff(a, b, n), 0.0) << n;
+    std::ifstream nom(d / "nominal.json"), arm(d / "arm.json");
+    const nlohmann::json nj = nlohmann::json::parse(nom);
+    const nlohmann::json want = fracdesign::design::arm_gap_nominal(fracdesign::arm_from_json(nlohmann::json::parse(arm)));
+    EXPECT_EQ(nj["A"], want["A"]);
+    EXPECT_EQ(nj["C"], want["C"]);
+    fs::remove_all(opt.out_dir);
 }

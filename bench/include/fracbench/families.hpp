@@ -5,6 +5,8 @@
 //   twomass    seed 004 two-mass drive on the lockstep HIL rig, PD loop (gap_bench.cpp)
 //   servo      rigid servo axis, PD with filtered difference, +-10 V clip (family_servo.cpp)
 //   foprocess  y = K e^{-tau s} / (1 + T s^lambda) u in open loop (family_foprocess.cpp)
+//   arm        a drawn arm document (frac.arm) on the lockstep HIL rig, ArmCtrl from the
+//              document, its open-loop gap nominal (family_arm.cpp)
 // Every draw depends only on (bench seed, case id) and the options.
 #pragma once
 #include <cstdint>
@@ -49,8 +51,11 @@ inline double uniform(hil_rng* rng, double lo, double hi) { return lo + (hi - lo
 Family twomass_family();
 Family servo_family();
 Family foprocess_family();
+Family arm_family();
 // The nominal model documents of the simulated families for a case.
 nlohmann::json servo_nominal_doc(const BenchCase& c);
 nlohmann::json foprocess_nominal_doc(const BenchCase& c);
+// The arm document (frac.arm) of an arm case, as the case files' arm.json.
+nlohmann::json arm_document_of(const BenchCase& c);
 
 }  // namespace fracbench

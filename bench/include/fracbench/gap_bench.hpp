@@ -121,6 +121,7 @@ struct CaseRun {
     nlohmann::json nominal;     // the nominal model document the diagnosis gets
     GapResult result;
     CaseOutcome outcome;
+    std::map<std::string, std::string> files;  // more case files a family writes with --out (name -> bytes)
 };
 
 // Runs the rig for the twomass case `c` and diagnoses the record.
