@@ -101,9 +101,9 @@ void strictly_increasing(const std::vector<frac_real>& x, const std::string& whe
 {
     for (size_t i = 1; i < x.size(); ++i)
         if (!(x[i] > x[i - 1]))
-            throw std::runtime_error(field(where, key + "[" + std::to_string(i) + "]") + ": " + std::to_string(double(x[i])) +
+            throw std::runtime_error(field(where, key + "[" + std::to_string(i) + "]") + ": " + shown(json(double(x[i]))) +
                                      " is not allowed (breakpoints strictly increasing: " + key + "[" +
-                                     std::to_string(i - 1) + "] = " + std::to_string(double(x[i - 1])) + ")");
+                                     std::to_string(i - 1) + "] = " + shown(json(double(x[i - 1]))) + ")");
 }
 
 }  // namespace
