@@ -297,3 +297,62 @@ TEST(GapControllerLibfrac, stages_equal_ramp_friction_lut1d_and_trajlut_calls)
     d["reference_table"] = {{"data", {traj}}, {"dt", 0.01}, {"lead", {3}}, {"t_motion_end", 1.99}, {"references", {"r"}}};
     expect_bits(run(d, ctx1()), want, "stages");
 }
+
+TEST(GapControllerLibfrac, fopid_small_signal_is_the_law_for_integer_orders)
+{
+    // PID with lambda = 1, mu = 1 (GL), no limits: the state space reproduces
+    // the law on any input; fractional orders have none.
+    json d = {{"kind", "fopid"}, {"kp", 1.7}, {"ki", 3.1}, {"kd", 0.2}, {"lambda", 1}, {"mu", 1}, {"tf", 0.01},
+              {"b", 0.6}, {"c", 0.3}, {"delta", 0.05}, {"measured", "v"}, {"op", {{"method", "gl"}, {"memory", 10}}}};
+    const ControllerContext ctx = ctx1();
+    std::unique_ptr<Controller> c = make_controller(d, ctx);
+    Eigen::MatrixXd A, B, C, D;
+    ASSERT_TRUE(c->small_signal(A, B, C, D));
+    ASSERT_EQ(B.cols(), 3);
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(A.rows());
+    const double r0 = 0, y0[2] = {0, 0};
+    c->start(&r0, y0);
+    for (int k = 0; k < 500; ++k) {
+        const double r = ref(k), y[2] = {meas(k), vel(k)};
+        double u = 0;
+        c->step(&r, y, &u);
+        const Eigen::Vector3d w(r, y[0], y[1]);
+        const double us = (C * x + D * w)(0);
+        x = A * x + B * w;
+        ASSERT_NEAR(u, us, 1e-9 * (1 + std::fabs(u))) << k;
+    }
+    d["lambda"] = 0.9;
+    EXPECT_FALSE(make_controller(d, ctx)->small_signal(A, B, C, D));
+    d["lambda"] = 1;
+    d["mu"] = 0.5;
+    EXPECT_FALSE(make_controller(d, ctx)->small_signal(A, B, C, D));
+}
+
+TEST(GapControllerLibfrac, a_collocated_clone_owns_its_state)
+{
+    const json d = {{"kind", "collocated"}, {"kc", 2.2}, {"alpha", 0.7}, {"m", 1}, {"n1", 0.03}, {"fa", 0.1}, {"fbeta", 0.5},
+                    {"fb", 0.02}, {"op", {{"method", "gl"}, {"memory", 100}}}};
+    std::unique_ptr<Controller> a = make_controller(d, ctx1());
+    const double r0 = 0, y0[2] = {0, 0};
+    a->start(&r0, y0);
+    double u = 0, v = 0;
+    for (int k = 0; k < 300; ++k) {
+        const double r = ref(k), y[2] = {meas(k), 0};
+        a->step(&r, y, &u);
+    }
+    std::unique_ptr<Controller> b = a->clone();
+    std::vector<double> ub;
+    for (int k = 300; k < 900; ++k) {
+        const double r = ref(k), y[2] = {meas(k), 0};
+        b->step(&r, y, &v);
+        ub.push_back(v);
+    }
+    a.reset();
+    std::unique_ptr<Controller> fresh = make_controller(d, ctx1());
+    fresh->start(&r0, y0);
+    for (int k = 0; k < 900; ++k) {
+        const double r = ref(k), y[2] = {meas(k), 0};
+        fresh->step(&r, y, &u);
+        if (k >= 300) ASSERT_EQ(u, ub[size_t(k - 300)]) << k;
+    }
+}
