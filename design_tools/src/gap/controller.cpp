@@ -1,6 +1,7 @@
 // controller.cpp - the registry of controller kinds (controller.hpp).
 #include "fracdesign/gap/controller.hpp"
 
+#include <cmath>
 #include <map>
 #include <mutex>
 #include <stdexcept>
@@ -77,7 +78,19 @@ std::unique_ptr<Controller> make_controller(const nlohmann::json& doc, const Con
         for (const std::string& k : controller_kinds()) list += (list.empty() ? "" : ", ") + k;
         throw std::runtime_error(ctx.where + ".kind: unknown controller kind '" + kind + "' (kinds: " + list + ")");
     }
-    return make(doc, ctx);
+    // The divider first: the law is built for its own task period n Ts.
+    ControllerContext law_ctx = ctx;
+    int divider = 1;
+    if (doc.contains("divider")) {
+        const json& d = doc.at("divider");
+        if (!d.is_number() || !std::isfinite(d.get<double>()) || d.get<double>() != std::floor(d.get<double>()) ||
+            d.get<double>() < 1 || d.get<double>() > 1e6)
+            throw std::runtime_error(ctx.where + ".divider: " + d.dump() +
+                                     " is not allowed (an integer >= 1: the law runs every n-th sample)");
+        divider = int(d.get<double>());
+        law_ctx.Ts = ctx.Ts * divider;
+    }
+    return with_common_stages(make(doc, law_ctx), doc, law_ctx, divider);
 }
 
 }  // namespace gap

@@ -1,6 +1,8 @@
 // nominal.cpp - reading and discretising the nominal model (see nominal.hpp).
 #include "fracdesign/gap/nominal.hpp"
 
+#include "controllers/document.hpp"
+
 #include "fracdesign/model_json.hpp"
 
 #include <cmath>
@@ -268,13 +270,18 @@ NominalModel nominal_from_json(const json& doc, double Ts, const std::string& ba
         ctx.references = m.loop.references;
         ctx.measured = measured;
         ctx.outputs = int(m.inputs.size());
+        ctx.inputs = m.inputs;
         ctx.where = w + ".controller";
         ctx.base_dir = base_dir;
         m.loop.controller = make_controller(cl.at("controller"), ctx);
         m.loop.delay_samples = cl.value("delay_samples", 0);
         if (m.loop.delay_samples < 0) throw std::runtime_error(w + ": delay_samples must be >= 0");
-        if (cl.contains("saturation")) m.loop.saturation = cl.at("saturation").get<double>();
-        if (!(m.loop.saturation > 0)) throw std::runtime_error(w + ": saturation must be > 0");
+        if (cl.contains("saturation")) {
+            const Limits l = read_limits(cl.at("saturation"), w + ".saturation");
+            m.loop.saturation_min = l.lo;
+            m.loop.saturation_max = l.hi;
+            m.loop.saturation = l.scale();
+        }
         if (cl.contains("additive")) m.loop.additive = names(cl, "additive", w);
         if (m.D.cwiseAbs().maxCoeff() != 0.0)
             throw std::runtime_error(w + ": the plant must be strictly proper (D = 0) in a closed loop");

@@ -292,7 +292,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
             h_ctl.push(cvec.data());
             const double* cd = m.loop.delay_samples > 0 ? h_ctl.lagged(m.loop.delay_samples + 1) : cvec.data();
             for (int i = 0; i < nu; ++i) {
-                u[size_t(i)] = std::min(std::max(cd[i], -m.loop.saturation), m.loop.saturation);
+                u[size_t(i)] = std::min(std::max(cd[i], m.loop.saturation_min), m.loop.saturation_max);
                 if (i < int(m.loop.additive.size())) u[size_t(i)] += s.exo(k, nr + i);
             }
             if (k == 0) bl_out = gain * u[size_t(fi)];

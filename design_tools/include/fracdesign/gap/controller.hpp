@@ -35,6 +35,7 @@ struct ControllerContext {
     double Ts = 0.0;                      // the record's sample time: one step() per sample
     std::vector<std::string> references;  // closed_loop.references (data columns), in order
     std::vector<std::string> measured;    // closed_loop.measured (model outputs), in order
+    std::vector<std::string> inputs;      // names of the plant inputs the outputs drive (may be empty: indices)
     int outputs = 0;                      // plant inputs the controller drives
     std::string where;                    // document path of the object, e.g. "model gap.closed_loop.controller"
     std::string base_dir;                 // directory of the model document (tables named by a relative path)
@@ -71,12 +72,20 @@ public:
 // the field (ctx.where + ".field"), its value and what is allowed.
 using ControllerFactory = std::function<std::unique_ptr<Controller>(const nlohmann::json& doc, const ControllerContext& ctx)>;
 
+// The fields every kind accepts besides its own, handled by make_controller
+// around the kind's law (docs/gap.md "Controller kinds"): "divider" (the law
+// runs every n-th sample at n Ts, its output held), "limits", "rate_limit",
+// "friction", "feedforward", "reference_table". A factory's own check of
+// unknown fields lets these pass.
+const std::vector<std::string>& controller_common_fields();
+
 // Adds (or replaces) a kind. Thread-safe; call before the documents naming it are read.
 void register_controller_kind(const std::string& kind, ControllerFactory make);
 // Every kind this program can replay, sorted.
 std::vector<std::string> controller_kinds();
 // The object's "kind" (default "statespace", the controller of the first
-// document version) built by its factory. An unknown kind is refused with
+// document version) built by its factory, with ctx.Ts multiplied by its
+// "divider", and wrapped in the common stages the object names. An unknown kind is refused with
 // the list of kinds; a kind only a program above design_tools provides
 // (e.g. "armctrl") is refused with the name of that program.
 std::unique_ptr<Controller> make_controller(const nlohmann::json& doc, const ControllerContext& ctx);

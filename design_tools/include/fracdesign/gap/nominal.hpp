@@ -5,7 +5,7 @@
 // inputs and outputs, plus, for closed-loop records, the known controller:
 //   w(k)  = [r(k); y_m(k)]          references from the data, measured model outputs
 //   xc(k+1) = Ac xc(k) + Bc w(k),   c(k) = Cc xc(k) + Dc w(k)
-//   u(k)  = sat(c(k - delay)) + a(k) additive data columns (e.g. injected pulses)
+//   u(k)  = clamp(c(k - delay), min, max) + a(k) additive data columns (e.g. injected pulses)
 // The plant is any rational model of the project's model format
 // (fracdesign/model_json.hpp, e.g. kind "statespace"); the "gap" extension
 // section of the document gives the loop and the friction hook-up
@@ -31,7 +31,12 @@ struct ClosedLoop {
     // clone (controller.hpp). Inputs [references; measured], outputs = plant inputs.
     std::shared_ptr<const Controller> controller;
     int delay_samples = 0;                // pure delay between controller and plant (computation delay)
-    double saturation = std::numeric_limits<double>::infinity();  // symmetric limit on the plant inputs
+    // Limits on the plant inputs, [saturation_min, saturation_max]
+    // (gap.closed_loop.saturation: a number L for [-L, L] or {"min", "max"});
+    // saturation = max(|min|, |max|), the scale of the saturation candidate.
+    double saturation = std::numeric_limits<double>::infinity();
+    double saturation_min = -std::numeric_limits<double>::infinity();
+    double saturation_max = std::numeric_limits<double>::infinity();
     // Data columns added to the plant inputs after the saturation, the i-th to
     // plant input i; a column absent from a record counts as zero there.
     std::vector<std::string> additive;

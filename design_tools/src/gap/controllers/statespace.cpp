@@ -4,7 +4,8 @@
 // continuous (discretised with zero-order hold at the record's Ts) or
 // discrete at Ts (docs/gap.md "Closed loop"). It starts in the steady state
 // (I - Ac) xc = Bc w(0) of the first sample when I - Ac is invertible, else
-// at rest. Limits are the loop's (gap.closed_loop.saturation).
+// at rest. Limits: the loop's (gap.closed_loop.saturation) and the common
+// "limits" stage (pipeline.cpp).
 #include <stdexcept>
 
 #include "fracdesign/gap/nominal.hpp"
@@ -67,6 +68,7 @@ private:
 
 std::unique_ptr<Controller> make_statespace_controller(const nlohmann::json& doc, const ControllerContext& ctx)
 {
+    check_fields(doc, ctx.where, "statespace", {"time", "Ts", "A", "B", "C", "D"});
     Eigen::MatrixXd A, B, C, D;
     read_statespace(doc, Eigen::Index(ctx.references.size() + ctx.measured.size()), Eigen::Index(ctx.outputs), ctx.Ts,
                     ctx.where, A, B, C, D);
