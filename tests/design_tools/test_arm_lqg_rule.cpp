@@ -109,6 +109,25 @@ TEST(ArmLqgRule, derived_arms_of_other_lengths_and_imu_positions_are_accepted_wi
     EXPECT_GT(ladder_needed, 0);  // the sweep exercises the ladder, not only the default step
 }
 
+TEST(ArmLqgRule, a_high_gain_arm_is_accepted_by_the_weight_back_off)
+{
+    // damped, rated 3000 N m (Table 8.8 scaled by (3000 / 95.7)^2), d_i = d_o = 5 at T = 2 ms: every model
+    // step is stable but below the modulus margin; slower weights give it back
+    json j = alu(1.2, 0.96, 2e-3);
+    j["link"]["damping"] = {{"r_t", 0.5}};
+    j["drive"]["torque_rated"] = 3000;
+    j["drive"]["torque_peak"] = 6000;
+    j["delays"] = {{"input", 5}, {"output", 5}};
+    const ArmDocument a = arm_from_json(j);
+    const design::ArmLqg r = design::design_arm_lqg(a);
+    expect_accepted_first(a, r);
+    const design::ArmLqgStep& won = r.steps[static_cast<size_t>(r.accepted_step)];
+    EXPECT_LT(won.back_off, 1.0);
+    EXPECT_DOUBLE_EQ(r.lqg.params.q_low, won.back_off * design::arm_lqg_params(a).q_low);
+    for (int i = 0; i < r.accepted_step; ++i)
+        if (r.steps[static_cast<size_t>(i)].designed) EXPECT_LT(r.steps[static_cast<size_t>(i)].modulus_unreduced, design::kArmModulusMin);
+}
+
 TEST(ArmLqgRule, a_damped_arm_keeps_the_default_step)
 {
     json j = alu(1.2, 0.96, 1e-3);
