@@ -583,16 +583,20 @@ nlohmann::json arm_gap_nominal(const ArmDocument& a)
 std::string arm_hil_scenario(const ArmDocument& a, const std::string& plant_table, const std::string& ctrl_table, double duration)
 {
     // The IMU node reads every r/2 cycles and sends r acquisitions (r/2 cycles) later: seen r/2 .. r/2 + 1
-    // cycles old, i.e. d_o = r/2 + 1 (the thesis's r = 4 for d_o = 3). r must lie in 2..8.
-    const int r = 2 * std::max(1, a.dout - 1);
-    if (a.dout > 5)
-        throw std::invalid_argument("the HIL IMU node models d_o <= 5 samples (imu.reading_cycles <= 8); the document has " +
-                                    std::to_string(a.dout));
-    long bits = 0;
-    while ((1L << bits) < a.encoder_counts) ++bits;
-    if ((1L << bits) != a.encoder_counts || bits > 20)
-        throw std::invalid_argument("the HIL drive counts 2^bits per revolution, bits <= 20; sensors.encoder_counts_per_rev = " +
-                                    std::to_string(a.encoder_counts));
+    // cycles old, i.e. d_o = r/2 + 1 (the thesis's r = 4 for d_o = 3). r = 2 (d_o - 1) must lie in 2..8
+    // (hil/imu.h), so the rig models d_o = 2..5 and no other: a d_o of 0 or 1 would run with 2.
+    if (a.dout < kRigImuDoMin || a.dout > kRigImuDoMax)
+        throw ArmDocumentError("delays.output", "value " + std::to_string(a.dout) + ": the HIL rig's IMU node models only [" +
+                                                    std::to_string(kRigImuDoMin) + ", " + std::to_string(kRigImuDoMax) +
+                                                    "] samples (imu.reading_cycles = 2 (d_o - 1) in 2..8); no scenario for this arm");
+    const int r = 2 * (a.dout - 1);
+    int bits = 0;
+    while (bits < 31 && (1L << bits) < a.encoder_counts) ++bits;
+    if ((1L << bits) != a.encoder_counts || bits > kRigEncoderBitsMax)
+        throw ArmDocumentError("sensors.encoder_counts_per_rev",
+                               "value " + std::to_string(a.encoder_counts) + ": the HIL rig's drive counts 2^bits per revolution, "
+                               "bits in [1, " + std::to_string(kRigEncoderBitsMax) + "] (2 .. " +
+                               std::to_string(1L << kRigEncoderBitsMax) + ", a power of 2); no scenario for this arm");
     std::ostringstream s;
     s.precision(10);
     s << "# hil_bench scenario of the arm document '" << a.name << "' (fracdesign model --arm --save-scenario)\n"

@@ -178,8 +178,14 @@ tables::ParamTable arm_plant_table_for(const ArmDocument& a, double h);
 // delay chain of d_o states), gap.velocity motor_velocity, gap.force_input torque_actual.
 nlohmann::json arm_gap_nominal(const ArmDocument& a);
 
+// What the HIL rig can emulate (hil/imu.h reading_cycles 1..8 with d_o = reading_cycles / 2 + 1 for even
+// values; hil/drive.h encoder_bits 1..20).
+constexpr int kRigImuDoMin = 2, kRigImuDoMax = 5, kRigEncoderBitsMax = 20;
+
 // hil_bench scenario lines for the arm (T, plant = arm, drive delay/limits/current loop/encoder, IMU
 // reading period for d_o, noise, friction). `plant_table`, `ctrl_table`: file names; duration in s.
+// Throws ArmDocumentError naming delays.output outside [kRigImuDoMin, kRigImuDoMax] or
+// sensors.encoder_counts_per_rev that is not 2^bits with bits <= kRigEncoderBitsMax.
 std::string arm_hil_scenario(const ArmDocument& a, const std::string& plant_table, const std::string& ctrl_table,
                              double duration);
 
