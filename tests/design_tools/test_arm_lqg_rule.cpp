@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include "fracdesign/design/arm_design.hpp"
+#include "fracdesign/design/ibffc.hpp"
 #include "fracdesign/design/riccati.hpp"
 #include "fracdesign/models/arm_document.hpp"
 #include "run_command.hpp"
@@ -235,4 +236,23 @@ TEST(ArmLqgNoise, a_noisier_sensor_gets_less_kalman_gain)
     const double enc[3] = {gain("encoder_noise", 1e-4, 1), gain("encoder_noise", 1e-2, 1), gain("encoder_noise", 0.1, 1)};
     EXPECT_GT(enc[0], enc[1]);
     EXPECT_GT(enc[1], 1.5 * enc[2]) << enc[0] << " " << enc[1] << " " << enc[2];
+}
+
+// ---- the inverse feedforward's angle mode ----
+
+TEST(ArmIbffc, the_inverse_motor_angle_starts_at_rest_at_the_start_angle)
+{
+    // a damped 0.8 m arm at T = 1 ms: its zero dynamics' angle eigenvalue computes as 1 + 3.7e-9; run
+    // backward it anchored theta_M* at the end (from -1 rad to 0 for a 0 -> 1 rad move)
+    json j = alu(0.8, 0.64, 1e-3);
+    j["link"]["damping"] = {{"r_t", 0.5}};
+    j["delays"] = {{"input", 3}, {"output", 3}};
+    const ArmDocument a = arm_from_json(j);
+    const design::ArmReduction red = design::choose_reduction(a);
+    const StateSpace reduced = arm_document_measured(a, build_arm_from_document(a, a.design.N, true, red.shifts));
+    const design::Move mv = design::Move::parse("0:1.0@1.0+1.5");
+    const auto r = design::stable_inversion(reduced, a.T, [&](double t) { return mv.eval(t)[1]; }, 0.0, 4.5);
+    EXPECT_NEAR(r.theta_M.front(), 0.0, 1e-6);
+    EXPECT_NEAR(r.theta_M.back(), 1.0, 1e-3);
+    EXPECT_EQ(r.n_backward + r.n_forward, static_cast<int>(reduced.nx()));
 }
