@@ -55,6 +55,40 @@ TEST(ArmCli, bad_document_is_refused_naming_the_field_and_writes_nothing)
     EXPECT_NE(out.find("cannot read the file"), std::string::npos) << out;
 }
 
+TEST(ArmCli, a_document_the_hil_rig_cannot_emulate_gets_no_scenario_and_no_file)
+{
+    const fs::path d = scratch("rig");
+    const std::string outs = " --save-plant " + (d / "p.bin").string() + " --save-scenario " + (d / "s.txt").string();
+    struct Case {
+        const char* section;
+        const char* key;
+        long value;
+        const char* message;
+    };
+    for (const Case& c : {Case{"delays", "output", 6, "arm: field 'delays.output': value 6: the HIL rig's IMU node models only [2, 5] samples"},
+                          Case{"delays", "output", 1, "arm: field 'delays.output': value 1: the HIL rig's IMU node models only [2, 5] samples"},
+                          Case{"sensors", "encoder_counts_per_rev", 1000000,
+                               "arm: field 'sensors.encoder_counts_per_rev': value 1000000: the HIL rig's drive counts 2^bits per "
+                               "revolution, bits in [1, 20] (2 .. 1048576, a power of 2)"},
+                          Case{"sensors", "encoder_counts_per_rev", 1L << 21,
+                               "arm: field 'sensors.encoder_counts_per_rev': value 2097152: the HIL rig's drive counts"}}) {
+        json j = json::parse(std::ifstream(kArmB));
+        j[c.section][c.key] = c.value;
+        const std::string doc = write_doc(d, j);
+        int st = 0;
+        std::string out = run_command(kExe + " model --arm " + doc + outs, &st);
+        EXPECT_EQ(st, 2) << out;
+        EXPECT_NE(out.find(c.message), std::string::npos) << out;
+        EXPECT_FALSE(fs::exists(d / "s.txt"));
+        EXPECT_FALSE(fs::exists(d / "p.bin"));  // nothing written, also not the outputs the rig does not limit
+        // the design itself is not limited by the rig: the plant table alone is written
+        out = run_command(kExe + " model --arm " + doc + " --save-plant " + (d / "p.bin").string(), &st);
+        EXPECT_EQ(st, 0) << out;
+        EXPECT_TRUE(fs::exists(d / "p.bin"));
+        fs::remove(d / "p.bin");
+    }
+}
+
 TEST(ArmCli, bad_moves_and_mixed_options_are_refused)
 {
     const fs::path d = scratch("moves");

@@ -80,7 +80,8 @@ int run_armctrl_arm(const Args& args)
                         {"ff_samples", n_ff}, {"ff_grid", {d.t0, d.dt, d.t_motion_start, d.t_motion_end}},
                         {"tau_M_max", d.tau_max}, {"torque_peak", a.torque_peak}, {"pre_actuation_start", d.pre_actuation_start},
                         {"lqg", {{"n", d.A.rows()}, {"n_bar", d.K.cols()}, {"check_reduced", design::to_json(d.check_reduced)},
-                                 {"check_unreduced", design::to_json(d.check_unreduced)}}}};
+                                 {"check_unreduced", design::to_json(d.check_unreduced)},
+                                 {"spillover_rule", design::arm_lqg_rule_json(r.lqg)}}}};
     if (d.ibffc) j["ibffc"] = {{"tracking_rel_rms", d.ibffc->rel_rms}, {"modes_forward", d.ibffc->n_forward}, {"modes_backward", d.ibffc->n_backward}};
     if (args.has("json")) {
         std::cout << j.dump(2) << "\n";
@@ -93,6 +94,8 @@ int run_armctrl_arm(const Args& args)
             std::printf("  LQG closed loop on the %s arm, d_i = %d, d_o = %d: spectral radius %.9f (%s), GM %.2f dB, PM %.2f deg\n",
                         name, c.plant_di, c.plant_do, c.spectral_radius, c.spectral_radius < 1.0 ? "stable" : "UNSTABLE",
                         c.gain_margin_db, c.phase_margin_deg);
+        std::printf("  LQG spillover rule: %s (design model %ld states, unreduced spectral radius <= %.9f)\n",
+                    r.lqg.steps[static_cast<size_t>(r.lqg.accepted_step)].rule.c_str(), long(d.A.rows()), r.lqg.rho_max);
         std::printf("  table '%s' -> %s [%s, %zu bytes]\n", d.table.name.c_str(), out.c_str(), format.c_str(), data.size());
     }
     return 0;

@@ -54,15 +54,28 @@ int run_lqg_arm(const Args& args)
     j["source"] = "arm document '" + a.name + "': seed 004 (6.36)-(6.45), (7.3)-(7.27) with the weights of docs/arm_format.md";
     j["arm"] = a.name;
     if (a.design.reduce) j["reduction"] = reduction_json(r.reduction);
+    j["spillover_rule"] = design::arm_lqg_rule_json(r);
     j["check_reduced"] = design::to_json(r.check_reduced);
     j["check_unreduced"] = design::to_json(r.check_unreduced);
-    if (args.has("out")) write_file(args.str("out"), j.dump(2) + "\n");
+    if (args.has("out") && r.accepted()) write_file(args.str("out"), j.dump(2) + "\n");
     if (args.has("json")) {
         std::cout << j.dump(2) << "\n";
     } else {
         const design::LqgParams& p = r.lqg.params;
-        std::printf("LQG for arm '%s': T = %g s, d_i = %d, d_o = %d; weights q_low %.4g, q_high %.4g (n_low %d), S_c %g\n",
-                    a.name.c_str(), p.T, p.di, p.dout, p.q_low, p.q_high, p.n_low, p.s_c);
+        std::printf("LQG for arm '%s': T = %g s, d_i = %d, d_o = %d; weights q_low %.4g, q_high %.4g (n_low %d), S_c %g; "
+                    "Q_o %.3g %.3g %.3g %.3g, S_o diag %.3g %.3g %.3g\n",
+                    a.name.c_str(), p.T, p.di, p.dout, p.q_low, p.q_high, p.n_low, p.s_c, p.qo_drive, p.qo_beam, p.qo_delay,
+                    p.qo_dist, p.s_o[0], p.s_o[1], p.s_o[2]);
+        std::printf("  spillover rule (accept: unreduced spectral radius <= %.9f, min|1+L| >= %.2f):\n", r.rho_max,
+                    design::kArmModulusMin);
+        for (size_t i = 0; i < r.steps.size(); ++i) {
+            const design::ArmLqgStep& st = r.steps[i];
+            if (st.designed)
+                std::printf("    %-56s %2d states: unreduced %.9f, min|1+L| %.3f%s\n", st.rule.c_str(), st.reduced_states,
+                            st.rho_unreduced, st.modulus_unreduced, static_cast<int>(i) == r.accepted_step ? "  <- accepted" : "");
+            else
+                std::printf("    %-56s not designed: %s\n", st.rule.c_str(), st.note.c_str());
+        }
         if (a.design.reduce) {
             const auto& rd = r.reduction;
             std::printf("  reduction: bandwidth %.4g Hz, %zu shifts", rd.bandwidth_hz, rd.shifts.size());
@@ -75,9 +88,14 @@ int run_lqg_arm(const Args& args)
                     long(r.lqg.K.cols()), long(r.lqg.Le.rows()), long(r.lqg.Le.cols()), r.lqg.ctrl.residual, r.lqg.obs.residual);
         print_check("reduced", r.check_reduced);
         print_check("unreduced", r.check_unreduced);
-        if (args.has("out")) std::printf("  design written to %s\n", args.str("out").c_str());
+        std::printf("  stability margin 1 - rho = %.3g (bound %.3g)\n", 1.0 - r.check_unreduced.spectral_radius, 1.0 - r.rho_max);
+        if (args.has("out") && r.accepted()) std::printf("  design written to %s\n", args.str("out").c_str());
     }
-    return r.check_unreduced.spectral_radius < 1.0 ? 0 : 1;
+    if (!r.accepted()) {
+        std::cerr << "fracdesign lqg: " << design::arm_lqg_refusal(a, r) << "\n";
+        return 1;
+    }
+    return 0;
 }
 
 int run_lqg(const std::vector<std::string>& argv)
@@ -153,8 +171,12 @@ CommandRegistrar reg({"lqg", "state-difference LQG with delays for the flexible 
                       "--arm: the arm document (docs/arm_format.md) gives everything: the full model at\n"
                       "design.N, the reduced model with automatic Krylov shifts (each retained mode's\n"
                       "error printed; refused above design.mode_error_max below the bandwidth), the\n"
-                      "weights (default rule scaled to the rated torque, or design.lqg), T, d_i, d_o;\n"
-                      "the loop is checked on the reduced and the UNREDUCED arm with those delays.\n\n"
+                      "weights (default rule scaled to the rated torque, or design.lqg; S_o from the\n"
+                      "sensors' noise), T, d_i, d_o; the loop is checked on the reduced and the UNREDUCED\n"
+                      "arm with those delays. Accepted: unreduced spectral radius <= exp(-1e-6 T) and\n"
+                      "min|1+L| >= 0.25; else the spillover rule retains more beam modes, then (default\n"
+                      "weights) backs the weights off x 0.1, 0.01, 0.001; every step is printed, the\n"
+                      "first accepted wins; none: exit 1, no --out (docs/arm_format.md).\n\n"
                       "Designs K and L_e for the Krylov-reduced arm (16 states) with the weights of\n"
                       "Table 8.7 (C: no delay) or 8.8 (D: T = 1.2 ms, d_i = 4, d_o = 3): ZOH, delay\n"
                       "augmentation, modal weights (real modal form, |lambda| ascending), dlqr for K,\n"

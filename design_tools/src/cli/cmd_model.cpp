@@ -262,6 +262,8 @@ int run_model_arm(const Args& a)
         try {
             files.emplace_back(a.str("save-scenario"),
                                design::arm_hil_scenario(doc, a.str("plant-table", "plant.bin"), a.str("ctrl-table", "ctrl.bin"), dur));
+        } catch (const ArmDocumentError& e) {
+            throw UsageError(e.what());
         } catch (const std::invalid_argument& e) {
             throw UsageError(e.what());
         }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <fstream>
 #include <sstream>
 
@@ -21,6 +22,13 @@ std::string fmt(double v)
 {
     char b[40];
     std::snprintf(b, sizeof b, "%.6g", v);
+    return b;
+}
+
+std::string rho(double v)
+{
+    char b[40];
+    std::snprintf(b, sizeof b, "%.9f", v);
     return b;
 }
 
@@ -43,8 +51,9 @@ nlohmann::json mat(const Eigen::MatrixXd& M)
 
 }  // namespace
 
-ArmReduction choose_reduction(const ArmDocument& a)
+ArmReduction choose_reduction(const ArmDocument& a, int extra_modes)
 {
+    if (extra_modes < 0) throw std::invalid_argument("choose_reduction: extra_modes must be >= 0");
     ArmReduction r;
     const int N = a.design.N;
     const double nyq_hz = 0.5 / a.T;
@@ -55,12 +64,14 @@ ArmReduction choose_reduction(const ArmDocument& a)
     r.bandwidth_hz = a.design.bandwidth_hz > 0 ? a.design.bandwidth_hz : r.full_hz.front();
     const std::vector<double> beam_hz = clamped_free_frequencies_hz(full.beam, -1);
     const double wb = 2.0 * kPi * r.bandwidth_hz;
+    size_t by_rule = 0;  // the rule's count: modes up to reduce_multiple x w_b, at least 2
     for (double f : beam_hz) {
-        const double w = 2.0 * kPi * f;
-        if (r.beam_modes_rad_s.size() >= 2 && w > a.design.reduce_multiple * wb) break;
-        if (static_cast<int>(r.beam_modes_rad_s.size()) >= kArmShiftsMax - 1) break;
-        r.beam_modes_rad_s.push_back(w);
+        if (by_rule >= 2 && 2.0 * kPi * f > a.design.reduce_multiple * wb) break;
+        ++by_rule;
     }
+    const size_t m = std::min({by_rule + static_cast<size_t>(extra_modes), beam_hz.size(), static_cast<size_t>(kArmShiftsMax - 1)});
+    for (size_t i = 0; i < m; ++i) r.beam_modes_rad_s.push_back(2.0 * kPi * beam_hz[i]);
+    r.extra_modes = static_cast<int>(m) - static_cast<int>(std::min(by_rule, m));
     if (r.beam_modes_rad_s.size() < 2) throw ArmDesignError("arm: the beam at N = " + std::to_string(N) + " has fewer than 2 modes");
     r.shifts.push_back(0.5 * r.beam_modes_rad_s.front());
     r.shifts.insert(r.shifts.end(), r.beam_modes_rad_s.begin(), r.beam_modes_rad_s.end());
@@ -93,6 +104,18 @@ ArmReduction choose_reduction(const ArmDocument& a)
     return r;
 }
 
+std::array<double, 3> arm_measurement_covariance(const ArmDocument& a)
+{
+    if (a.design.s_o > 0) return {a.design.s_o, a.design.s_o, a.design.s_o};
+    std::array<double, 3> s{1.0, 1.0, 1.0};  // Table 8.8: S_o = I_3
+    if (a.encoder_noise > 0) {
+        s[0] = a.encoder_noise * a.encoder_noise;
+        s[1] = 2.0 * s[0] / (a.T * a.T);  // theta_M' as the encoder's difference quotient over T
+    }
+    if (a.imu_noise > 0) s[2] = a.imu_noise * a.imu_noise;
+    return s;
+}
+
 LqgParams arm_lqg_params(const ArmDocument& a)
 {
     const ArmDesignSection& s = a.design;
@@ -110,28 +133,157 @@ LqgParams arm_lqg_params(const ArmDocument& a)
     p.qo_beam = s.qo_beam;
     p.qo_delay = s.qo_delay;
     p.qo_dist = s.qo_dist;
-    p.s_o = s.s_o;
+    p.s_o = arm_measurement_covariance(a);
     return p;
 }
 
+double arm_rho_max(double T) { return std::exp(-kArmDecayMin * T); }
+
+namespace {
+
+// One step of the ladder: reduction with `extra` modes beyond the rule, the weights scaled by `back_off`,
+// design and both checks. A model or Riccati failure is the step's note; `out` is filled when designed.
+ArmLqgStep try_step(const ArmDocument& a, const StateSpace& full, int extra, double back_off, ArmLqg& out,
+                    std::exception_ptr& riccati)
+{
+    ArmLqgStep st;
+    st.extra_modes = extra;
+    st.back_off = back_off;
+    st.rule = back_off < 1.0 ? "weights x " + fmt(back_off) + " (q_low, q_high, Qo), " + std::to_string(extra) + " extra modes"
+              : extra > 0   ? std::to_string(extra) + " extra mode" + (extra > 1 ? "s" : "") + " in the design model"
+                            : "default";
+    try {
+        ArmLqg r;
+        r.full = full;
+        if (a.design.reduce) {
+            r.reduction = choose_reduction(a, extra);
+            if (extra > 0 && r.reduction.extra_modes < extra) {
+                st.note = "no further beam mode to retain (at most " + std::to_string(kArmShiftsMax - 1) + ")";
+                return st;
+            }
+            r.reduced = arm_document_measured(a, build_arm_from_document(a, a.design.N, true, r.reduction.shifts));
+        } else {
+            r.reduced = full;
+        }
+        st.reduced_states = static_cast<int>(r.reduced.nx());
+        if (extra > 0 && st.reduced_states > kArmctrlLqgNmax) {
+            st.note = "the design model would have " + std::to_string(st.reduced_states) + " states, more than the PLC's LQG holds (" +
+                      std::to_string(kArmctrlLqgNmax) + ")";
+            return st;
+        }
+        LqgParams p = arm_lqg_params(a);
+        if (p.n_low > r.reduced.nx())
+            throw ArmDesignError("arm: design.lqg.n_low = " + std::to_string(p.n_low) + " exceeds the model order " +
+                                 std::to_string(r.reduced.nx()));
+        for (double* w : {&p.q_low, &p.q_high, &p.qo_drive, &p.qo_beam, &p.qo_delay, &p.qo_dist}) *w *= back_off;
+        r.lqg = design_lqg(r.reduced, p);
+        r.check_reduced = check_closed_loop(r.lqg, r.reduced, a.di, a.dout);
+        r.check_unreduced = check_closed_loop(r.lqg, r.full, a.di, a.dout);
+        st.designed = true;
+        st.rho_reduced = r.check_reduced.spectral_radius;
+        st.rho_unreduced = r.check_unreduced.spectral_radius;
+        st.modulus_unreduced = r.check_unreduced.modulus_margin;
+        st.accepted = st.rho_unreduced <= arm_rho_max(a.T) && st.modulus_unreduced >= kArmModulusMin;
+        out = std::move(r);
+    } catch (const ArmDesignError& e) {
+        if (extra == 0 && back_off == 1.0) throw;  // the document's own reduction or n_low refused: a document fault
+        st.note = e.what();
+    } catch (const RiccatiError& e) {
+        st.note = std::string("Riccati: ") + e.what();
+        if (!riccati) riccati = std::current_exception();
+    } catch (const std::runtime_error& e) {
+        st.note = e.what();  // e.g. the Krylov basis losing rank with more shifts
+    }
+    return st;
+}
+
+}  // namespace
+
 ArmLqg design_arm_lqg(const ArmDocument& a)
 {
-    ArmLqg r;
-    const int N = a.design.N;
-    if (a.design.reduce) {
-        r.reduction = choose_reduction(a);
-        r.reduced = arm_document_measured(a, build_arm_from_document(a, N, true, r.reduction.shifts));
+    const StateSpace full = arm_document_measured(a, build_arm_from_document(a, a.design.N, false, {}));
+    std::vector<ArmLqgStep> steps;
+    std::vector<ArmLqg> designs;  // designs[i] belongs to steps[index[i]]
+    std::vector<size_t> index;
+    std::exception_ptr riccati;  // the first Riccati failure, rethrown when no step designs
+    auto run = [&](int extra, double back_off) {
+        ArmLqg r;
+        steps.push_back(try_step(a, full, extra, back_off, r, riccati));
+        if (steps.back().designed) {
+            designs.push_back(std::move(r));
+            index.push_back(steps.size() - 1);
+        }
+        return steps.back();
+    };
+    ArmLqgStep st = run(0, 1.0);
+    // 1. more retained modes, one beam mode per step, while the model grows and fits the PLC
+    int largest = 0;
+    for (int extra = 1; !st.accepted && a.design.reduce; ++extra) {
+        st = run(extra, 1.0);
+        if (!st.designed) break;
+        largest = extra;
     }
-    r.full = arm_document_measured(a, build_arm_from_document(a, N, false, {}));
-    if (!a.design.reduce) r.reduced = r.full;
-    const LqgParams p = arm_lqg_params(a);
-    if (p.n_low > r.reduced.nx())
-        throw ArmDesignError("arm: design.lqg.n_low = " + std::to_string(p.n_low) + " exceeds the model order " +
-                             std::to_string(r.reduced.nx()));
-    r.lqg = design_lqg(r.reduced, p);
-    r.check_reduced = check_closed_loop(r.lqg, r.reduced, a.di, a.dout);
-    r.check_unreduced = check_closed_loop(r.lqg, r.full, a.di, a.dout);
-    return r;
+    // 2. back-off of the default weights on the largest model
+    const ArmDesignSection& s = a.design;
+    const bool default_weights = !(s.q_low > 0 || s.q_high > 0 || s.s_c > 0);
+    for (double f : kArmBackOff) {
+        if (st.accepted || !default_weights) break;
+        st = run(largest, f);
+    }
+    if (designs.empty()) {
+        if (riccati) std::rethrow_exception(riccati);
+        throw ArmDesignError("arm: no step of the LQG rule gave a design: " + steps.front().note);
+    }
+    // the first accepted step, else the most stable design (the caller refuses it)
+    size_t pick = 0;
+    for (size_t i = 0; i < designs.size(); ++i) {
+        if (steps[index[i]].accepted) {
+            pick = i;
+            break;
+        }
+        if (designs[i].check_unreduced.spectral_radius < designs[pick].check_unreduced.spectral_radius) pick = i;
+    }
+    ArmLqg out = std::move(designs[pick]);
+    out.accepted_step = steps[index[pick]].accepted ? static_cast<int>(index[pick]) : -1;
+    out.steps = std::move(steps);
+    out.rho_max = arm_rho_max(a.T);
+    return out;
+}
+
+std::string arm_lqg_refusal(const ArmDocument& a, const ArmLqg& r)
+{
+    std::string tried;
+    for (const ArmLqgStep& st : r.steps)
+        if (st.designed) tried += (tried.empty() ? "" : "; ") + st.rule + ": " + rho(st.rho_unreduced) + ", " + fmt(st.modulus_unreduced);
+    return "arm: the LQG loop on the unreduced arm with d_i = " + std::to_string(a.di) + ", d_o = " + std::to_string(a.dout) +
+           " has no step of the spillover rule with spectral radius <= " + rho(r.rho_max) + " and min|1+L| >= " +
+           fmt(kArmModulusMin) + " (" + tried + "): give design.lqg weights";
+}
+
+nlohmann::json arm_lqg_rule_json(const ArmLqg& r)
+{
+    nlohmann::json steps = nlohmann::json::array();
+    for (const ArmLqgStep& st : r.steps) {
+        nlohmann::json j = {{"rule", st.rule}, {"extra_modes", st.extra_modes}, {"back_off", st.back_off},
+                            {"designed", st.designed}, {"accepted", st.accepted}};
+        if (st.designed) {
+            j["reduced_states"] = st.reduced_states;
+            j["spectral_radius_reduced"] = st.rho_reduced;
+            j["spectral_radius_unreduced"] = st.rho_unreduced;
+            j["modulus_margin_unreduced"] = st.modulus_unreduced;
+        } else {
+            j["note"] = st.note;
+        }
+        steps.push_back(j);
+    }
+    return {{"criterion", "on the unreduced arm with the document's delays: spectral radius <= exp(-kArmDecayMin T), "
+                          "kArmDecayMin = 1e-6 1/s, and min|1+L| >= 0.25 (docs/arm_format.md)"},
+            {"rho_max", r.rho_max},
+            {"modulus_min", kArmModulusMin},
+            {"accepted", r.accepted()},
+            {"accepted_rule", r.accepted() ? nlohmann::json(r.steps[static_cast<size_t>(r.accepted_step)].rule) : nlohmann::json(nullptr)},
+            {"stability_margin", 1.0 - r.check_unreduced.spectral_radius},
+            {"steps", steps}};
 }
 
 // ---- the move ----
@@ -256,10 +408,7 @@ ArmctrlForArm design_armctrl_for_arm(const ArmDocument& a, const Move& mv, FfKin
     if (!(std::isfinite(post) && post >= 0.0)) throw std::invalid_argument("--post must be finite and >= 0");
     ArmctrlForArm out;
     out.lqg = design_arm_lqg(a);
-    if (!(out.lqg.check_unreduced.spectral_radius < 1.0))
-        throw ArmDesignError("arm: the LQG loop on the unreduced arm with d_i = " + std::to_string(a.di) + ", d_o = " +
-                             std::to_string(a.dout) + " is unstable (spectral radius " +
-                             fmt(out.lqg.check_unreduced.spectral_radius) + "): give design.lqg weights");
+    if (!out.lqg.accepted()) throw ArmDesignError(arm_lqg_refusal(a, out.lqg));
     ArmctrlDesign& d = out.d;
     ArmctrlSpec& s = d.spec;
     s.exp = (a.di > 0 || a.dout > 0) ? 'D' : 'C';
@@ -434,16 +583,20 @@ nlohmann::json arm_gap_nominal(const ArmDocument& a)
 std::string arm_hil_scenario(const ArmDocument& a, const std::string& plant_table, const std::string& ctrl_table, double duration)
 {
     // The IMU node reads every r/2 cycles and sends r acquisitions (r/2 cycles) later: seen r/2 .. r/2 + 1
-    // cycles old, i.e. d_o = r/2 + 1 (the thesis's r = 4 for d_o = 3). r must lie in 2..8.
-    const int r = 2 * std::max(1, a.dout - 1);
-    if (a.dout > 5)
-        throw std::invalid_argument("the HIL IMU node models d_o <= 5 samples (imu.reading_cycles <= 8); the document has " +
-                                    std::to_string(a.dout));
-    long bits = 0;
-    while ((1L << bits) < a.encoder_counts) ++bits;
-    if ((1L << bits) != a.encoder_counts || bits > 20)
-        throw std::invalid_argument("the HIL drive counts 2^bits per revolution, bits <= 20; sensors.encoder_counts_per_rev = " +
-                                    std::to_string(a.encoder_counts));
+    // cycles old, i.e. d_o = r/2 + 1 (the thesis's r = 4 for d_o = 3). r = 2 (d_o - 1) must lie in 2..8
+    // (hil/imu.h), so the rig models d_o = 2..5 and no other: a d_o of 0 or 1 would run with 2.
+    if (a.dout < kRigImuDoMin || a.dout > kRigImuDoMax)
+        throw ArmDocumentError("delays.output", "value " + std::to_string(a.dout) + ": the HIL rig's IMU node models only [" +
+                                                    std::to_string(kRigImuDoMin) + ", " + std::to_string(kRigImuDoMax) +
+                                                    "] samples (imu.reading_cycles = 2 (d_o - 1) in 2..8); no scenario for this arm");
+    const int r = 2 * (a.dout - 1);
+    int bits = 0;
+    while (bits < 31 && (1L << bits) < a.encoder_counts) ++bits;
+    if ((1L << bits) != a.encoder_counts || bits > kRigEncoderBitsMax)
+        throw ArmDocumentError("sensors.encoder_counts_per_rev",
+                               "value " + std::to_string(a.encoder_counts) + ": the HIL rig's drive counts 2^bits per revolution, "
+                               "bits in [1, " + std::to_string(kRigEncoderBitsMax) + "] (2 .. " +
+                               std::to_string(1L << kRigEncoderBitsMax) + ", a power of 2); no scenario for this arm");
     std::ostringstream s;
     s.precision(10);
     s << "# hil_bench scenario of the arm document '" << a.name << "' (fracdesign model --arm --save-scenario)\n"

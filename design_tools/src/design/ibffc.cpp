@@ -43,10 +43,13 @@ IbffcResult stable_inversion(const StateSpace& plant, double h, const std::funct
         if (k < N) r.t[k] = t0 + k * h;
         r.y_des[k] = y_des(t0 + k * h);
     }
-    // Split (4.33): forward for |lambda| <= 1 (the angle mode sits at 1), backward otherwise (4.34).
+    // Split (4.33): forward for |lambda| <= 1, backward otherwise (4.34). The angle mode sits at 1 and
+    // must run forward (the move starts from rest at its start angle); computed, it lands up to ~1e-8
+    // off 1 (1 + 3.7e-9 for a 0.8 m aluminium arm at T = 1 ms: run backward, the angle is anchored at the
+    // end, theta_M* from -(move) to 0), so it is taken by its distance to 1, not its modulus.
     std::vector<char> fwd(n);
     for (Eigen::Index i = 0; i < n; ++i) {
-        fwd[i] = std::abs(lam(i)) <= 1.0 + 1e-9;
+        fwd[i] = std::abs(lam(i)) <= 1.0 + 1e-9 || std::abs(lam(i) - 1.0) <= kIbffcAngleModeTol;
         (fwd[i] ? r.n_forward : r.n_backward) += 1;
     }
     std::vector<Eigen::VectorXcd> sig(N, Eigen::VectorXcd::Zero(n));

@@ -145,6 +145,8 @@ LqgDesign design_lqg(const StateSpace& plant, const LqgParams& p)
     if (plant.nu() != 1 || plant.ny() != 3) throw std::invalid_argument("plant must have 1 input and 3 outputs");
     const Eigen::Index n = plant.nx();
     if (p.n_low < 0 || p.n_low > n) throw std::invalid_argument("n_low must lie in [0, n]");
+    for (double s : p.s_o)
+        if (!(std::isfinite(s) && s > 0.0)) throw std::invalid_argument("S_o must be positive on every channel");
     LqgDesign d;
     d.params = p;
     d.plant = plant;
@@ -178,7 +180,7 @@ LqgDesign design_lqg(const StateSpace& plant, const LqgParams& p)
     for (Eigen::Index i = 0; i < N + 1; ++i)
         qo(i) = i == N ? p.qo_dist : i < 4 ? p.qo_drive : i < n ? p.qo_beam : p.qo_delay;
     d.Qo = qo.asDiagonal();
-    d.So = p.s_o * MatrixXd::Identity(3, 3);
+    d.So = Eigen::Vector3d(p.s_o[0], p.s_o[1], p.s_o[2]).asDiagonal();
     d.obs = solve_dare(d.Ae.transpose(), d.Ce.transpose(), d.Qo, d.So);  // dual problem
     const MatrixXd P = d.obs.X;
     d.Le = d.Ae * P * d.Ce.transpose() * (d.So + d.Ce * P * d.Ce.transpose()).inverse();  // predictor gain (7.27)

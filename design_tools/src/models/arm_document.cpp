@@ -261,7 +261,7 @@ ArmDocument arm_from_json(const json& j)
             s.qo_beam = q.num_def("Qo_beam", 0.0, 1e15, false, false, "", s.qo_beam);
             s.qo_delay = q.num_def("Qo_delay", 0.0, 1e15, false, false, "", s.qo_delay);
             s.qo_dist = q.num_def("Qo_dist", 0.0, 1e15, true, false, "", s.qo_dist);
-            s.s_o = q.num_def("S_o", 0.0, 1e15, true, false, "", s.s_o);
+            s.s_o = q.num_def("S_o", 0.0, 1e15, true, false, "", 0.0);
         }
     }
     a.drive.validate();
@@ -307,7 +307,8 @@ json arm_to_json(const ArmDocument& a)
     json d = {{"N", s.N}, {"reduce", s.reduce}, {"reduce_multiple", s.reduce_multiple}, {"mode_error_max", s.mode_error_max}};
     if (s.bandwidth_hz > 0) d["bandwidth_hz"] = s.bandwidth_hz;
     json q = {{"n_low", s.n_low}, {"q_delay", s.q_delay}, {"Qo_drive", s.qo_drive}, {"Qo_beam", s.qo_beam},
-              {"Qo_delay", s.qo_delay}, {"Qo_dist", s.qo_dist}, {"S_o", s.s_o}};
+              {"Qo_delay", s.qo_delay}, {"Qo_dist", s.qo_dist}};
+    if (s.s_o > 0) q["S_o"] = s.s_o;
     if (s.q_low > 0) q["q_low"] = s.q_low;
     if (s.q_high > 0) q["q_high"] = s.q_high;
     if (s.s_c > 0) q["S_c"] = s.s_c;

@@ -15,9 +15,22 @@
 // LQG default weights (Table 8.8 scaled to the arm by Bryson's rule with the rated torque as the
 // torque scale): S_c = 1, q_low = 5e3 (tau_rated / 95.7 N m)^2, q_high = 1e-2 (tau_rated / 95.7 N m)^2
 // on the first n_low = 4 modal coordinates (rigid-body pair and first flexible mode) and the rest; Kalman
-// weights of Table 8.8. Explicit design.lqg values replace them. The loop is checked on the UNREDUCED
-// arm with the document's delays (and on the reduced one).
+// process weights of Table 8.8; measurement covariance S_o from the sensors' noise
+// (arm_measurement_covariance). Explicit design.lqg values replace them. The loop is checked on the
+// UNREDUCED arm with the document's delays (and on the reduced one).
+//
+// Spillover ladder (design_arm_lqg): a design is accepted when the unreduced loop's spectral radius is
+// at most rho_max = exp(-kArmDecayMin T) and its modulus margin at least kArmModulusMin. Steps,
+// in this order, the first accepted one wins:
+//   0. the reduction rule and the weights above;
+//   1. one more clamped-free beam mode in the Krylov design model per step (shift at that mode), while
+//      the beam has one, the Krylov basis keeps its rank and the model fits kArmctrlLqgNmax states: an
+//      unmodelled, lightly damped mode (often one above Nyquist, aliased) is what the loop destabilises;
+//   2. only with the default weights: q_low, q_high and the Kalman Q_o scaled by each of kArmBackOff on
+//      the largest model of step 1 (slower controller and observer, less gain where the model is wrong).
+// None accepted: the most stable design is returned with accepted_step = -1 and callers refuse it.
 #pragma once
+#include <array>
 #include <functional>
 #include <string>
 #include <vector>
@@ -38,6 +51,23 @@ struct ArmDesignError : std::runtime_error {
 
 constexpr int kArmShiftsMax = 7;            // 4 x 7 = 28 beam states: the PLC's LQG holds 32
 constexpr double kWangRatedTorque = 95.7;   // N m, seed 004 Table G.2 x 160 (notes 004a)
+constexpr int kArmctrlLqgNmax = 32;         // plant states the PLC's LQG holds (ARMCTRL_LQG_NMAX, ArmCtrl.h)
+// Accepted loop (the stated stability margin):
+//  - spectral radius <= exp(-kArmDecayMin T): the slowest closed-loop mode decays with a time constant of
+//    at most 1e6 s. This floor is set by the plant, not the controller: a beam mode with no damping in
+//    the model (r_r = 0 leaves the shear/rotation modes undamped, r_t = 0 all of them) that the loop
+//    barely reaches keeps its eigenvalue within ~1e-8 of the unit circle (seed 004's arm: 1 - 3.8e-9 at
+//    41.9 Hz) and no controller moves it far. Moduli that close to 1 are near the resolution of the
+//    computed eigenvalues (n eps ||A_cl|| with ||A_cl|| up to ~1e5 in the Krylov coordinates), so the
+//    floor decides "not destabilised" (the spillover failures it catches are 1 + 1e-5 .. 1 + 1e-3), and
+//    the robustness margin is the second criterion:
+//  - min |1 + L| >= kArmModulusMin at the plant input on the unreduced arm: a gain margin of at least
+//    -20 log10(1 - 0.25) = 2.5 dB and a phase margin of at least 2 asin(0.125) = 14.4 deg, the margin
+//    against the model error that is left once the loop is stable.
+constexpr double kArmDecayMin = 1e-6;    // 1/s
+constexpr double kArmModulusMin = 0.25;  // min |1 + L|
+constexpr double kArmBackOff[] = {1e-1, 1e-2, 1e-3};
+double arm_rho_max(double T);
 
 struct ArmModeCompare {
     double full_hz = 0.0, reduced_hz = 0.0, rel_error = 0.0;
@@ -51,23 +81,54 @@ struct ArmReduction {
     std::vector<ArmModeCompare> retained;  // each reduced-arm flexible mode below Nyquist vs the full arm
     double max_error_below_bandwidth = 0.0;
     int full_states = 0, reduced_states = 0;
+    int extra_modes = 0;  // beam modes retained beyond the rule (the spillover ladder's step 1)
 };
 
-// The shifts by the rule above and the comparison; throws ArmDesignError when refused.
-ArmReduction choose_reduction(const ArmDocument& a);
+// The shifts by the rule above (plus `extra_modes` further beam modes, as far as the beam and
+// kArmShiftsMax allow: extra_modes in the result says how many) and the comparison; throws
+// ArmDesignError when refused.
+ArmReduction choose_reduction(const ArmDocument& a, int extra_modes = 0);
+
+// S_o = diag(theta_M, theta_M', psi'(z_imu)) of the document: design.lqg.S_o x I_3 when given; else
+// sensors.encoder_noise sigma_e gives sigma_e^2 and 2 sigma_e^2 / T^2 (the velocity as the encoder's
+// difference quotient), sensors.imu_noise sigma_g gives sigma_g^2; a channel without a noise figure
+// (absent or 0) keeps Table 8.8's 1 (the seed's S_o = I_3; the thesis gives no sensor noise).
+std::array<double, 3> arm_measurement_covariance(const ArmDocument& a);
 
 // The LQG parameters of the document (default rule or explicit weights), T and delays from it.
 LqgParams arm_lqg_params(const ArmDocument& a);
+
+// One step of the spillover ladder.
+struct ArmLqgStep {
+    std::string rule;        // "default", "2 extra modes in the design model", "weights x 0.01 (...)"
+    int extra_modes = 0;     // beam modes beyond the reduction rule
+    double back_off = 1.0;   // factor on q_low, q_high, Qo
+    int reduced_states = 0;
+    bool designed = false;   // false: `note` says why (no further mode, too many states, Riccati, Krylov rank)
+    bool accepted = false;   // on the unreduced arm: spectral radius <= rho_max, min |1 + L| >= kArmModulusMin
+    double rho_reduced = 0.0, rho_unreduced = 0.0, modulus_unreduced = 0.0;
+    std::string note;
+};
 
 struct ArmLqg {
     ArmReduction reduction;
     StateSpace reduced, full;  // measured models (tau_M -> theta_M, theta_M', psi'(z_imu))
     LqgDesign lqg;
     LoopCheck check_reduced, check_unreduced;  // both with the document's delays
+    std::vector<ArmLqgStep> steps;             // every step tried, in order
+    int accepted_step = -1;                    // index into steps; -1: none accepted (this is the most stable)
+    double rho_max = 1.0;
+    bool accepted() const { return accepted_step >= 0; }
 };
 
-// Throws ArmDesignError (reduction refused or unreduced loop unstable) or RiccatiError.
+// The spillover ladder above. Throws ArmDesignError (the document's reduction refused, n_low too large)
+// or RiccatiError (no step's Riccati equations solvable: the default step's cause); an unaccepted loop is
+// accepted_step = -1.
 ArmLqg design_arm_lqg(const ArmDocument& a);
+// One line for a design none of whose steps was accepted: each step's unreduced spectral radius.
+std::string arm_lqg_refusal(const ArmDocument& a, const ArmLqg& r);
+// {"criterion", "rho_max", "accepted", "accepted_rule", "stability_margin" (1 - rho), "steps": [...]}.
+nlohmann::json arm_lqg_rule_json(const ArmLqg& r);
 
 // A move of the tip: consecutive sin^2 segments (seed 004 (4.1)-(4.7)); each goes from the previous
 // end angle to q_end, starting at t_start and taking `duration`, with t_a = duration / 3 so that
@@ -117,8 +178,14 @@ tables::ParamTable arm_plant_table_for(const ArmDocument& a, double h);
 // delay chain of d_o states), gap.velocity motor_velocity, gap.force_input torque_actual.
 nlohmann::json arm_gap_nominal(const ArmDocument& a);
 
+// What the HIL rig can emulate (hil/imu.h reading_cycles 1..8 with d_o = reading_cycles / 2 + 1 for even
+// values; hil/drive.h encoder_bits 1..20).
+constexpr int kRigImuDoMin = 2, kRigImuDoMax = 5, kRigEncoderBitsMax = 20;
+
 // hil_bench scenario lines for the arm (T, plant = arm, drive delay/limits/current loop/encoder, IMU
 // reading period for d_o, noise, friction). `plant_table`, `ctrl_table`: file names; duration in s.
+// Throws ArmDocumentError naming delays.output outside [kRigImuDoMin, kRigImuDoMax] or
+// sensors.encoder_counts_per_rev that is not 2^bits with bits <= kRigEncoderBitsMax.
 std::string arm_hil_scenario(const ArmDocument& a, const std::string& plant_table, const std::string& ctrl_table,
                              double duration);
 

@@ -19,6 +19,9 @@
 
 namespace fracdesign::design {
 
+// Eigenvalues of the zero dynamics within this distance of 1 are the angle mode (run forward).
+constexpr double kIbffcAngleModeTol = 1e-6;
+
 struct IbffcResult {
     double h = 0.0;
     std::vector<double> t, u, y_des;  // time [s], tau_M* [N m], desired psi'(L) [rad/s]

@@ -20,6 +20,7 @@
 //  5. control law (7.21): u = u* + K e_x_hat - e_z_hat, i.e. e_u = -K e_x_hat + e_z_hat.
 #pragma once
 #include <Eigen/Dense>
+#include <array>
 #include <string>
 
 #include <nlohmann/json_fwd.hpp>
@@ -60,7 +61,8 @@ struct LqgParams {
     double q_delay = 0.0;               // Q_c^xi_beta = q_delay I (Table 8.8: 0)
     double s_c = 1.0;                   // S_c
     double qo_drive = 1e-4, qo_beam = 1e-4, qo_delay = 1e-4, qo_dist = 1e4;  // Kalman Q_o blocks (Table 8.8)
-    double s_o = 1.0;                   // S_o = s_o I_3
+    // S_o = diag(s_o), the measurement covariance of (theta_M, theta_M', psi'(z)) (Table 8.8: I_3)
+    std::array<double, 3> s_o{1.0, 1.0, 1.0};
     // Table 8.7 (Exp. C, no delay) and Table 8.8 (Exp. D) presets.
     static LqgParams exp_c();
     static LqgParams exp_d();

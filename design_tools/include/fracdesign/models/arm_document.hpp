@@ -60,7 +60,8 @@ struct ArmDesignSection {
     // LQG weights: <= 0 means "by the default rule" (docs/arm_format.md, design/arm_design.hpp)
     int n_low = 4;
     double q_low = 0.0, q_high = 0.0, q_delay = 0.0, s_c = 0.0;
-    double qo_drive = 1e-4, qo_beam = 1e-4, qo_delay = 1e-4, qo_dist = 1e4, s_o = 1.0;
+    double qo_drive = 1e-4, qo_beam = 1e-4, qo_delay = 1e-4, qo_dist = 1e4;
+    double s_o = 0.0;  // > 0: S_o = s_o I_3; 0: from the sensors' noise (arm_measurement_covariance)
 };
 
 struct ArmDocument {
