@@ -313,7 +313,12 @@ struct Evaluator {
 std::string unidentified_reason(double x, double sd, const ParamSpec& p)
 {
     char b[160];
-    const double tol = std::isfinite(p.hi - p.lo) ? 1e-3 * (p.hi - p.lo) : 1e-6;
+    // "At a bound" within 0.1 % of the range, but never farther from it than
+    // the estimate's own uncertainty allows: a value many standard deviations
+    // off a distant bound (Coulomb 5.93 +- 0.001 with a range of thousands)
+    // is identified.
+    double tol = std::isfinite(p.hi - p.lo) ? 1e-3 * (p.hi - p.lo) : 1e-6;
+    if (std::isfinite(sd) && std::isfinite(p.hi - p.lo)) tol = std::min(tol, std::max(2.0 * std::fabs(sd), 1e-6 * (p.hi - p.lo)));
     if (std::fabs(x - p.lo) <= tol) {
         std::snprintf(b, sizeof b, "at its lower bound %.4g", p.lo * p.scale);
         return b;

@@ -58,6 +58,7 @@ print("gap verdict: %s %s, shrink %.3f" % ("+".join(v["effects"]), v["params"], 
 check(v["effects"][:1] == ["coulomb_friction"], "the gap verdict names the withheld Coulomb friction first")
 fcv = v["params"].get("Fc", v["params"].get("coulomb_friction.Fc", float("nan")))
 check(abs(fcv - fc) < 0.1 * fc, "fitted Fc %.4g within 10 %% of the withheld %.4g N m" % (fcv, fc))
+check(not v.get("unidentified"), "the fitted parameters are identified (the record pins Fc), flagged: %s" % v.get("unidentified"))
 json.dump({"modes": modes, "spectral_radius_unreduced": cu["spectral_radius"], "gain_margin_db": cu["gain_margin_db"],
            "phase_margin_deg": cu["phase_margin_deg"],
            "tracking": {"inverse": {"rms": rms_i, "peak": peak_i}, "rigid": {"rms": rms_r, "peak": peak_r}},
