@@ -14,10 +14,10 @@ void OustaloupBand::validate() const
     auto bad = [](const std::string& f, double v, const std::string& allowed) {
         char b[64];
         std::snprintf(b, sizeof b, "%.6g", v);
-        throw std::invalid_argument("realization." + f + " is " + b + ", must be " + allowed);
+        throw std::invalid_argument("realization." + f + ": is " + b + ", must be " + allowed);
     };
     if (!std::isfinite(wb) || !(wb > 0)) bad("wb", wb, "a finite band edge > 0 rad/s");
-    if (!std::isfinite(wh) || !(wh > wb)) bad("wh", wh, "a finite band edge above wb (" + std::to_string(wb) + " rad/s)");
+    if (!std::isfinite(wh) || !(wh > wb)) bad("wh", wh, "a finite band edge above wb, in rad/s");
     if (N < 1 || N > kOustaloupNMax) bad("N", N, "an integer in [1, " + std::to_string(kOustaloupNMax) + "]");
 }
 
