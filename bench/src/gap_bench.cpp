@@ -526,7 +526,7 @@ CaseRun run_case(const BenchOptions& opt, const BenchCase& c)
 
 void diagnose_case(const BenchOptions& opt, const std::vector<std::string>& outputs, CaseRun& out)
 {
-    const NominalModel m = nominal_from_json(out.nominal, out.data.Ts);
+    const NominalModel m = nominal_from_json(out.nominal, out.data.Ts, ".", out.data.Ts * double(out.data.samples()));
     GapOptions g;
     g.outputs = outputs;
     g.max_iterations = opt.max_iterations;

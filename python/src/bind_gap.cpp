@@ -50,8 +50,9 @@ py::tuple diagnose(const py::dict& model, const py::dict& data, const py::object
     gap::GapRun run;
     {
         const gap::NominalModel nom = model.contains("path")
-                                          ? gap::load_nominal_model(model["path"].cast<std::string>(), d.Ts)
-                                          : gap::nominal_from_json(nlohmann::json::parse(model["text"].cast<std::string>()), d.Ts);
+                                          ? gap::load_nominal_model(model["path"].cast<std::string>(), d.Ts, d.Ts * double(d.samples()))
+                                          : gap::nominal_from_json(nlohmann::json::parse(model["text"].cast<std::string>()), d.Ts,
+                                                                   ".", d.Ts * double(d.samples()));
         py::gil_scoped_release nogil;
         run = gap::run_diagnosis(nom, d, has_val ? &v : nullptr, opt, command);
     }

@@ -22,11 +22,15 @@
 namespace fracdesign {
 namespace gap {
 
-double total_gap(const std::vector<double>& nrmse)
+double total_gap(const std::vector<double>& nrmse, const std::vector<double>& weight)
 {
-    double s = 0;
-    for (double e : nrmse) s += e * e;
-    return nrmse.empty() ? 0.0 : std::sqrt(s / double(nrmse.size()));
+    double s = 0, w = 0;
+    for (size_t c = 0; c < nrmse.size(); ++c) {
+        const double wc = c < weight.size() ? weight[c] : 1.0;
+        s += wc * nrmse[c] * nrmse[c];
+        w += wc;
+    }
+    return nrmse.empty() ? 0.0 : std::sqrt(s / w);
 }
 
 namespace {
@@ -298,6 +302,7 @@ struct Evaluator {
     double gap_before;
     double Ts;
     std::vector<double> scale;  // std of each output over the whole evaluated record
+    std::vector<double> weight; // channel weights of the aggregate gap (empty: equal)
 
     Eigen::MatrixXd simulate(const std::vector<EffectInstance>& eff) const
     {
@@ -354,7 +359,7 @@ FitReport make_report(const FitProblem& P, const FitOutcome& o, const Evaluator&
     }
     const Eigen::MatrixXd yhat = E.simulate(r.effects);
     r.gap_after = nrmse(E.y_eval, yhat, E.scale);
-    r.gap = total_gap(r.gap_after);
+    r.gap = total_gap(r.gap_after, E.weight);
     if (!std::isfinite(r.gap)) r.gap = std::numeric_limits<double>::infinity();
     r.shrink = E.gap_before > 0 ? 1.0 - r.gap / E.gap_before : 0.0;
     r.score = r.shrink - penalty * r.fitted_params;
@@ -513,6 +518,7 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
     const auto t_start = std::chrono::steady_clock::now();
     GapResult R;
     R.model_name = model.name;
+    R.realization = model.realization;
     R.data_source = data.source;
     R.Ts = data.Ts;
     if (validate && std::fabs(validate->Ts - data.Ts) > 1e-3 * data.Ts)
@@ -526,6 +532,16 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
         throw std::runtime_error("model/data mismatch: none of the model outputs is a column of " + data.source);
     R.outputs = outs;
     R.units = model_units(model, outs);
+    // gap.noise: every compared output needs its sensor's std.
+    std::vector<double> noise_sd;
+    if (!model.noise.empty())
+        for (const std::string& o : outs) {
+            const auto it = model.noise.find(o);
+            if (it == model.noise.end())
+                throw std::runtime_error("model gap.noise: states no std for the compared output '" + o +
+                                         "'; give one for every compared output, or leave gap.noise out");
+            noise_sd.push_back(it->second);
+        }
     ReplaySetup fit_setup = make_replay_setup(model, data, opt.inputs, outs);
     ReplaySetup eval_setup_v;
     if (validate) eval_setup_v = make_replay_setup(model, *validate, opt.inputs, outs);
@@ -634,14 +650,24 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
         }
     }
 
-    Evaluator E{&eval_setup, yeval, R.eval_first, R.eval_samples, 0.0, data.Ts, {}};
+    Evaluator E{&eval_setup, yeval, R.eval_first, R.eval_samples, 0.0, data.Ts, {}, {}};
     for (size_t c = 0; c < outs.size(); ++c) {
         const Eigen::VectorXd yc = evsig.col(outs[c]);
         E.scale.push_back(std::sqrt((yc.array() - yc.mean()).square().mean()));
     }
     const Eigen::MatrixXd yhat_nom = E.simulate({});
     R.gap_before = nrmse(yeval, yhat_nom, E.scale);
-    R.gap_before_total = total_gap(R.gap_before);
+    // gap.noise: channels weighted by (std/noise)^2 in the aggregate gap,
+    // and the floor the noise alone leaves.
+    if (!noise_sd.empty()) {
+        std::vector<double> floor;
+        for (size_t c = 0; c < outs.size(); ++c) {
+            E.weight.push_back(std::pow(E.scale[c] / noise_sd[c], 2));
+            floor.push_back(noise_sd[c] / E.scale[c]);
+        }
+        R.noise_floor = total_gap(floor, E.weight);
+    }
+    R.gap_before_total = total_gap(R.gap_before, E.weight);
     E.gap_before = R.gap_before_total;
     R.band_nrmse_before = band_nrmse(yeval, yhat_nom, data.Ts, E.scale);
 
@@ -715,7 +741,7 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
     FitProblem base_problem;
     base_problem.setup = &fit_setup;
     base_problem.y = ymeas.topRows(R.fit_samples);
-    base_problem.sigma = sigma;
+    base_problem.sigma = noise_sd.empty() ? sigma : noise_sd;  // gap.noise: residuals in units of the sensor's noise
     // The single fits are independent: they run on opt.threads workers
     // (each job's result lands in its own slot, so the outcome does not
     // depend on the thread count or the order the jobs finish in).
@@ -829,7 +855,8 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
     // Forward selection: add the best, refit all jointly, repeat while the
     // held-out gap shrinks by at least `margin` (relative) and the penalized score grows.
     R.verdict = none;
-    if (!singles.empty() && singles.front().first.score >= opt.margin) {
+    const bool at_noise_floor = R.noise_floor > 0 && R.gap_before_total <= kNoiseFloorFactor * R.noise_floor;
+    if (!at_noise_floor && !singles.empty() && singles.front().first.score >= opt.margin) {
         FitProblem cur = base_problem;
         cur.effects = {singles.front().second};
         FitReport best = singles.front().first;
@@ -978,6 +1005,11 @@ nlohmann::json result_json(const GapResult& R)
                       {"forward_selection", "add the best-scoring effect, refit jointly, keep it while the gap falls by >= 5 % (relative) and the score rises"}};
     j["data"] = {{"model", R.model_name}, {"fit", R.data_source}, {"held_out", R.eval_source},
                  {"fit_samples", R.fit_samples}, {"held_out_samples", R.eval_samples}, {"Ts", R.Ts}};
+    if (R.noise_floor > 0) {
+        j["noise_floor"] = num(R.noise_floor);
+        j["criterion"]["noise_floor"] = "gap.noise: a gap_before_total within 1.1 x the noise floor is none; channels weighted by (std/noise)^2";
+    }
+    if (!R.realization.empty()) j["data"]["realization"] = R.realization;
     j["skipped"] = R.skipped;
     j["seconds"] = R.seconds;
     return j;

@@ -159,19 +159,14 @@ void read_statespace(const json& j, Eigen::Index m, Eigen::Index p, double Ts, c
     }
 }
 
-NominalModel nominal_from_json(const json& doc, double Ts, const std::string& base_dir)
+NominalModel nominal_from_json(const json& doc, double Ts, const std::string& base_dir, double record_seconds)
 {
-    // The plant: any rational model of the project's model format (model_json.hpp).
+    // The plant: any model of the project's model format (model_json.hpp);
+    // a fractional one realized (plant_state_space, nominal_known.cpp).
     if (!doc.is_object()) throw std::runtime_error("model: not a JSON object");
-    StateSpace ss;
-    try {
-        ss = model_state_space(model_from_json(doc));
-    } catch (const ModelFormatError& e) {
-        throw std::runtime_error(e.what());
-    } catch (const std::invalid_argument& e) {
-        throw std::runtime_error(std::string("model: the gap replay needs a state-space model (") + e.what() + ")");
-    }
+    double plant_delay_s = 0.0;
     NominalModel m;
+    const StateSpace ss = plant_state_space(doc, Ts, record_seconds, &plant_delay_s, &m.realization);
     m.name = doc.value("name", model_kind(model_from_json(doc)));
     m.Ts = Ts;
     m.inputs = ss.inputs;
@@ -286,10 +281,11 @@ NominalModel nominal_from_json(const json& doc, double Ts, const std::string& ba
         if (m.D.cwiseAbs().maxCoeff() != 0.0)
             throw std::runtime_error(w + ": the plant must be strictly proper (D = 0) in a closed loop");
     }
+    read_known_section(g, plant_delay_s, m);
     return m;
 }
 
-NominalModel load_nominal_model(const std::string& path, double Ts)
+NominalModel load_nominal_model(const std::string& path, double Ts, double record_seconds)
 {
     std::ifstream in(path);
     if (!in) throw std::runtime_error(path + ": cannot open model file");
@@ -302,7 +298,7 @@ NominalModel load_nominal_model(const std::string& path, double Ts)
     const size_t slash = path.find_last_of('/');
     const std::string dir = slash == std::string::npos ? "." : path.substr(0, slash == 0 ? 1 : slash);
     try {
-        return nominal_from_json(doc, Ts, dir);
+        return nominal_from_json(doc, Ts, dir, record_seconds);
     } catch (const nlohmann::json::exception& e) {
         throw std::runtime_error(path + ": malformed model (" + e.what() + ")");
     } catch (const std::runtime_error& e) {

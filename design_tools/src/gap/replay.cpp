@@ -16,6 +16,38 @@ namespace gap {
 const std::vector<int>& replay_compared(const ReplaySetup& s) { return s.compared; }
 double replay_Ts(const ReplaySetup& s) { return s.model->Ts; }
 
+// The initial plant state the document states (gap.initial_state,
+// nominal.hpp): fitted (default): least squares through the first measured
+// sample of the compared outputs; at_rest: the steady state of the first
+// plant input, (I - A) x0 = B u(0) (open loop, the input after the
+// document's limits), x0 = 0 in a closed loop; given: the document's.
+static Eigen::VectorXd initial_state(const NominalModel& m, const ReplaySetup& s, const Signals& data,
+                              const std::vector<std::string>& outputs)
+{
+    const Eigen::Index nx = m.A.rows();
+    if (m.initial_state == NominalModel::Start::given) return m.x0_given;
+    if (m.initial_state == NominalModel::Start::at_rest) {
+        if (m.closed_loop) return Eigen::VectorXd::Zero(nx);
+        Eigen::VectorXd u0(m.B.cols());
+        for (Eigen::Index j = 0; j < u0.size(); ++j)
+            u0(j) = m.limit_input(size_t(j), s.exo(0, j));
+        const Eigen::MatrixXd IA = Eigen::MatrixXd::Identity(nx, nx) - m.A;
+        const Eigen::VectorXd b = m.B * u0;
+        const Eigen::VectorXd x0 = IA.completeOrthogonalDecomposition().solve(b);
+        if (!((IA * x0 - b).norm() <= 1e-9 * std::max(1.0, b.norm())))
+            throw std::runtime_error("model gap.initial_state: is \"at_rest\", but the plant has no steady state for the first "
+                                     "input of " + data.source + " (it integrates it); give {\"given\": [..]} or \"fitted\"");
+        return x0;
+    }
+    Eigen::MatrixXd Cc(s.compared.size(), nx);
+    Eigen::VectorXd y0(s.compared.size());
+    for (size_t i = 0; i < s.compared.size(); ++i) {
+        Cc.row(Eigen::Index(i)) = m.C.row(s.compared[i]);
+        y0(Eigen::Index(i)) = data.col(outputs[i])(0);
+    }
+    return Cc.completeOrthogonalDecomposition().solve(y0);
+}
+
 ReplaySetup make_replay_setup(const NominalModel& m, const Signals& data, const std::vector<std::string>& inputs,
                               const std::vector<std::string>& outputs)
 {
@@ -49,14 +81,7 @@ ReplaySetup make_replay_setup(const NominalModel& m, const Signals& data, const 
     s.measured.resize(N, Eigen::Index(outputs.size()));
     for (size_t c = 0; c < outputs.size(); ++c) s.measured.col(Eigen::Index(c)) = data.col(outputs[c]);
     if (s.compared.empty()) throw std::runtime_error("model/data mismatch: no model output is a column of " + data.source);
-    // Initial state: least squares through the first measured sample.
-    Eigen::MatrixXd Cc(s.compared.size(), m.A.rows());
-    Eigen::VectorXd y0(s.compared.size());
-    for (size_t i = 0; i < s.compared.size(); ++i) {
-        Cc.row(Eigen::Index(i)) = m.C.row(s.compared[i]);
-        y0(Eigen::Index(i)) = data.col(outputs[i])(0);
-    }
-    s.x0 = Cc.completeOrthogonalDecomposition().solve(y0);
+    s.x0 = initial_state(m, s, data, outputs);
     if (m.closed_loop) {
         // The controller at the first sample: first references, measured outputs of x0.
         std::vector<double> r0(m.loop.references.size()), y0(m.loop.measured.size());
@@ -125,7 +150,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     T.offset.assign(size_t(ny), 0.0);
     T.step.assign(size_t(ny), 0.0);
     for (const EffectInstance& e : effects) descriptor(e.kind).apply(e.params, e.site, s, T);
-    const double din = T.din;
+    const double din = m.input_delay + T.din;  // the nominal's delay (gap.input_delay, a foprocess's tau) + the effect's
     const int dout_max = T.dout_max;
     const std::vector<double>& dout = T.dout;
     const double Fc = T.Fc, Foff = T.Foff, Fv = T.Fv, Sc = T.Sc, Ss = T.Ss, Svs = T.Svs, bl = T.bl, dz = T.dz,
@@ -298,7 +323,9 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
             if (k == 0) bl_out = gain * u[size_t(fi)];
             input_path(v);
         } else {
-            for (int i = 0; i < nu; ++i) u[size_t(i)] = s.exo(k, i);
+            // The actuator's limits the document states (gap.input_limits).
+            for (int i = 0; i < nu; ++i)
+                u[size_t(i)] = m.limit_input(size_t(i), s.exo(k, i));
             if (k == 0) bl_out = gain * u[size_t(fi)];
             input_path(v);
             plant_outputs(true);

@@ -63,6 +63,7 @@ struct Window {
 
 struct GapResult {
     std::string model_name, data_source, eval_source;
+    std::string realization;                        // the nominal's fractional realization (NominalModel::realization)
     double Ts = 0.0;
     std::vector<std::string> outputs;
     Units units;                                    // of the model's signals (gap.units)
@@ -89,6 +90,10 @@ struct GapResult {
         double margin = 0.0;  // score(first) - score(runner_up)
         std::vector<LookAlike> look_alikes;
     } confidence;
+    // gap.noise: the aggregate gap the sensors' noise alone leaves (the
+    // held-out nrmse of a perfect model), 0 when the document states no
+    // noise; a gap_before_total within kNoiseFloorFactor of it is `none`.
+    double noise_floor = 0.0;
     std::vector<std::string> skipped;               // effects not applicable, with the reason
     // Traces for the report (evaluation record): time, measured, nominal, augmented.
     Eigen::VectorXd t;
@@ -99,13 +104,19 @@ struct GapResult {
     double seconds = 0.0;                           // wall time of the diagnosis
 };
 
+// A gap within this factor of the noise floor (GapResult::noise_floor) is
+// `none`: what an effect could add is below sqrt(1.1^2 - 1) = 0.46 of the noise.
+constexpr double kNoiseFloorFactor = 1.1;
+
 GapResult diagnose(const NominalModel& model, const Signals& data, const Signals* validate, const GapOptions& opt);
 
 // result.json (schema "frac.gap", version 1; keys of issue 10 plus details).
 nlohmann::json result_json(const GapResult& r);
 
-// Aggregate gap: sqrt(mean over outputs of nrmse^2).
-double total_gap(const std::vector<double>& nrmse);
+// Aggregate gap: sqrt(mean over outputs of nrmse^2), or with channel
+// weights w_c (gap.noise: w_c proportional to (std(y_c)/noise_c)^2)
+// sqrt(sum w_c nrmse_c^2 / sum w_c).
+double total_gap(const std::vector<double>& nrmse, const std::vector<double>& weight = {});
 
 }  // namespace gap
 }  // namespace fracdesign

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "fracdesign/gap/controller.hpp"
+#include "fracdesign/models/lti.hpp"
 
 namespace fracdesign {
 namespace gap {
@@ -87,6 +88,27 @@ struct NominalModel {
     Coupling coupling;     // gap.coupling, when has_coupling
     std::map<std::string, std::string> units;  // gap.units: signal name -> unit (optional, for the report)
 
+    // What the document states the user knows (docs/gap.md "What the
+    // document states"; read by read_known_section, nominal_known.cpp).
+    // Nominal delay of every plant input [samples]: gap.input_delay plus a
+    // foprocess's dead time; the input_delay effect looks for delay beyond it.
+    double input_delay = 0.0;
+    enum class Start { fitted, at_rest, given };
+    Start initial_state = Start::fitted;  // gap.initial_state
+    Eigen::VectorXd x0_given;             // Start::given: the plant state (the document's, discretisation keeps it)
+    std::map<std::string, double> noise;  // gap.noise: model output -> sensor noise std (empty: not stated)
+    // gap.input_limits (open loop): per plant input, the actuator's limits
+    // [lo, hi] (-inf/+inf where the document states none).
+    std::vector<double> input_lo, input_hi;
+    // Input i clamped to its stated limits (unchanged where none are stated).
+    double limit_input(size_t i, double u) const
+    {
+        if (i < input_lo.size()) u = u < input_lo[i] ? input_lo[i] : u;
+        if (i < input_hi.size()) u = u > input_hi[i] ? input_hi[i] : u;
+        return u;
+    }
+    std::string realization;  // a fractional plant's rational realization: band, order, accuracy ("" if rational)
+
     int output_index(const std::string& name) const;  // -1 if absent
     // Oscillatory and real modes of the nominal (loop closed when closed_loop
     // and the controller has a small-signal state space, controller delay and
@@ -100,8 +122,25 @@ struct NominalModel {
 // an irrational model kind).
 // `base_dir` is where tables a controller names by a relative path are
 // looked up (load_nominal_model: the document's directory).
-NominalModel nominal_from_json(const nlohmann::json& doc, double Ts, const std::string& base_dir = ".");
-NominalModel load_nominal_model(const std::string& path, double Ts);
+// `record_seconds` (the data's length; 0: unknown, read as 1e5 samples)
+// sets the default band of a fractional plant's realization.
+NominalModel nominal_from_json(const nlohmann::json& doc, double Ts, const std::string& base_dir = ".",
+                               double record_seconds = 0.0);
+NominalModel load_nominal_model(const std::string& path, double Ts, double record_seconds = 0.0);
+
+// The plant of a model document as a continuous or discrete state space:
+// a rational kind's own (model_state_space), a foprocess realized by
+// foprocess_realization (fracdesign/models/fo_realization.hpp) over the
+// band of gap.realization or its default for (Ts, record_seconds), its
+// dead time returned in *delay_s and its realization described in
+// *realization. std::runtime_error naming the field on a bad document.
+StateSpace plant_state_space(const nlohmann::json& doc, double Ts, double record_seconds, double* delay_s,
+                             std::string* realization);
+// Reads gap.input_delay, gap.initial_state, gap.noise and gap.input_limits
+// into m (the plant already read), adding `plant_delay_s` (a foprocess's
+// dead time) to the input delay. Each bad value: std::runtime_error with
+// one line naming the field, the value and what is allowed.
+void read_known_section(const nlohmann::json& gap, double plant_delay_s, NominalModel& m);
 
 // Reads the state space (A, B, C, D) of a document object with m inputs and
 // p outputs ("time": "continuous", discretised with zero-order hold at Ts,
