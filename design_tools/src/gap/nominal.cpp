@@ -268,6 +268,7 @@ NominalModel nominal_from_json(const json& doc, double Ts, const std::string& ba
         ctx.references = m.loop.references;
         ctx.measured = measured;
         ctx.outputs = int(m.inputs.size());
+        ctx.inputs = m.inputs;
         ctx.where = w + ".controller";
         ctx.base_dir = base_dir;
         m.loop.controller = make_controller(cl.at("controller"), ctx);

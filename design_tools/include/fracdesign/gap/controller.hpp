@@ -36,6 +36,7 @@ struct ControllerContext {
     std::vector<std::string> references;  // closed_loop.references (data columns), in order
     std::vector<std::string> measured;    // closed_loop.measured (model outputs), in order
     int outputs = 0;                      // plant inputs the controller drives
+    std::vector<std::string> inputs;      // their names (the model's inputs), in order
     std::string where;                    // document path of the object, e.g. "model gap.closed_loop.controller"
     std::string base_dir;                 // directory of the model document (tables named by a relative path)
 };
