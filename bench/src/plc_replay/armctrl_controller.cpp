@@ -285,14 +285,14 @@ std::unique_ptr<Controller> make_armctrl(const nlohmann::json& doc, const Contro
     // "ts" is a REAL on the PLC (float): equal to the record's Ts to its precision.
     if (!(std::fabs(ts - ctx.Ts) <= 1e-6 * ctx.Ts)) {
         char b[256];
-        std::snprintf(b, sizeof b, ": the table's cycle time 'ts' = %.9g s is not the record's sample time Ts = %.9g s "
+        std::snprintf(b, sizeof b, ": the table's cycle time 'ts' = %.7g s is not the record's sample time Ts = %.9g s "
                       "(one ArmCtrl cycle per sample)", ts, ctx.Ts);
         throw std::runtime_error(tw + b);
     }
     const unsigned ticks = ticks_for(ctx.Ts);
     if (!ticks) {
         char b[256];
-        std::snprintf(b, sizeof b, ": the table's cycle time 'ts' = %.9g s is no task-class duration: a whole multiple "
+        std::snprintf(b, sizeof b, ": the table's cycle time 'ts' = %.7g s is no task-class duration: a whole multiple "
                       "of 200 us in [%g, %g] s (Cyclic #1 = ts, Cyclic #2 = ts/2 on the 100 us tick)", ts, kTMin, kTMax);
         throw std::runtime_error(tw + b);
     }
