@@ -3,6 +3,8 @@
 // gap-bench's scoring. The Python package (python/fracarm) wraps it.
 #include <pybind11/pybind11.h>
 
+#include "fracbench/armctrl_controller.hpp"
+
 namespace py = pybind11;
 
 void bind_libfrac(py::module_& m);
@@ -13,6 +15,8 @@ void bind_bench(py::module_& m);
 PYBIND11_MODULE(_fracarm, m)
 {
     m.doc() = "fracarm's compiled core: libfrac, fracdesign models, gap diagnosis and verbs";
+    // the PLC's controller kinds (gap.closed_loop.controller kind "armctrl"), as gap-plc has them
+    fracbench::register_armctrl_controller();
     bind_libfrac(m);
     bind_gap(m);
     bind_design(m);

@@ -91,3 +91,15 @@ def test_errors_carry_the_cli_messages(record, demo_nominal, tmp_path):
     df.loc[5, "t"] = df.loc[4, "t"]
     with pytest.raises(FracarmError, match="<DataFrame data>"):
         gap.diagnose(demo_nominal, df)
+
+
+def test_armctrl_documents_are_replayed_with_the_plc_program(record, demo_nominal, tmp_path):
+    """The package registers the kind "armctrl" (gap-plc's): a document naming a missing ArmCtrl table is
+    refused by that kind (its table field), not as a kind this program cannot replay."""
+    doc = json.loads(open(demo_nominal).read())
+    y = doc["outputs"][0]
+    doc.setdefault("gap", {})["closed_loop"] = {"references": [], "measured": [y], "controller": {
+        "kind": "armctrl", "table": "no_such_table.bin", "inputs": {"MotorAngle": y, "MotorVelocity": y, "TipRate": y}}}
+    (tmp_path / "n.json").write_text(json.dumps(doc))
+    with pytest.raises(FracarmError, match=r"gap.closed_loop.controller.table: cannot open the ArmCtrl table"):
+        gap.diagnose(str(tmp_path / "n.json"), record)

@@ -50,6 +50,12 @@ std::map<std::string, Command>& command_registry();
 // Writes `bytes` to `path` (binary); std::runtime_error "cannot write '<path>'".
 void write_file(const std::string& path, const std::string& bytes);
 
+// The command line a subcommand records (e.g. result.json "command") starts
+// with "fracdesign <name>"; a program that runs one subcommand as itself
+// (gap-plc runs `gap` with the PLC's controller kinds registered) sets its
+// own name here, and the record starts with that instead.
+std::string& command_program();
+
 struct CommandRegistrar {
     explicit CommandRegistrar(Command c);
 };

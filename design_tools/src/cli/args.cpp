@@ -99,6 +99,12 @@ std::map<std::string, Command>& command_registry()
     return reg;
 }
 
+std::string& command_program()
+{
+    static std::string name;
+    return name;
+}
+
 CommandRegistrar::CommandRegistrar(Command c) { command_registry()[c.name] = std::move(c); }
 
 void write_file(const std::string& path, const std::string& bytes)

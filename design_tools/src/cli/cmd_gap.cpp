@@ -80,7 +80,7 @@ int run_gap(const std::vector<std::string>& argv)
     const bool has_val = args.has("validate");
     if (has_val) val = gap::load_signals(args.str("validate"));
     const gap::NominalModel model = gap::load_nominal_model(model_path, data.Ts, data.Ts * double(data.samples()));
-    std::string cmd = "fracdesign gap";
+    std::string cmd = command_program().empty() ? "fracdesign gap" : command_program();
     for (const std::string& a : argv) cmd += " " + a;
     const gap::GapRun run = gap::run_diagnosis(model, data, has_val ? &val : nullptr, opt, cmd);
     const gap::GapResult& r = run.result;

@@ -255,7 +255,16 @@ int run_model_arm(const Args& a)
             throw UsageError(e.what());
         }
     }
-    if (a.has("gap-nominal")) files.emplace_back(a.str("gap-nominal"), design::arm_gap_nominal(doc).dump(1) + "\n");
+    if (a.has("closed-loop") && !a.has("gap-nominal")) throw UsageError("option --closed-loop TABLE: only with --gap-nominal FILE");
+    if (a.has("gap-nominal")) {
+        nlohmann::json nom;
+        try {
+            nom = a.has("closed-loop") ? design::arm_gap_nominal_closed(doc, a.str("closed-loop")) : design::arm_gap_nominal(doc);
+        } catch (const std::invalid_argument& e) {
+            throw UsageError(e.what());
+        }
+        files.emplace_back(a.str("gap-nominal"), nom.dump(1) + "\n");
+    }
     if (a.has("save-scenario")) {
         const double dur = a.num("duration", 4.0);
         if (!(dur > 0.0 && dur <= 600.0)) throw UsageError("option --duration: allowed (0, 600] s");
@@ -300,10 +309,10 @@ int run_model_arm(const Args& a)
 int run_model(const std::vector<std::string>& argv)
 {
     Args a(argv, {"json", "full", "undamped"});
-    a.check_known({"json", "arm", "gap-nominal", "save-scenario", "plant-table", "ctrl-table", "duration", "model", "save", "save-ss", "save-plant", "h", "modes", "w", "N", "collocation", "L", "r_t", "r_r", "I_M", "full", "shifts",
+    a.check_known({"json", "arm", "gap-nominal", "closed-loop", "save-scenario", "plant-table", "ctrl-table", "duration", "model", "save", "save-ss", "save-plant", "h", "modes", "w", "N", "collocation", "L", "r_t", "r_r", "I_M", "full", "shifts",
                    "structure", "zeta", "alpha", "gamma", "lambda", "m2", "undamped", "K", "T", "tau"});
     if (a.has("arm")) return run_model_arm(a);
-    for (const char* k : {"gap-nominal", "save-scenario", "plant-table", "ctrl-table", "duration"})
+    for (const char* k : {"gap-nominal", "closed-loop", "save-scenario", "plant-table", "ctrl-table", "duration"})
         if (a.has(k)) throw UsageError(std::string("--") + k + " only with --arm ARM.json");
     ModelSpec m;
     if (a.has("model")) {
@@ -344,12 +353,16 @@ int run_model(const std::vector<std::string>& argv)
 CommandRegistrar reg({"model", "build a seed model and print its frequencies, poles/zeros or responses",
                       "usage: fracdesign model <beam|arm|antenna|collocated|foprocess> [params] [--json]\n"
                       "       fracdesign model --model FILE [--json]\n"
-                      "       fracdesign model --arm ARM.json [--save-plant FILE.bin [--h S]] [--gap-nominal FILE.json]\n"
+                      "       fracdesign model --arm ARM.json [--save-plant FILE.bin [--h S]]\n"
+                      "                        [--gap-nominal FILE.json [--closed-loop CTRL.bin]]\n"
                       "                        [--save-scenario FILE.txt [--plant-table F] [--ctrl-table F] [--duration S]] [--json]\n\n"
                       "  --arm ARM.json  the arm document (docs/arm_format.md): full model at design.N and the\n"
                       "                reduced one with automatic shifts (each retained mode vs the full arm);\n"
                       "                --save-plant: its HIL plant table (default h = T/8); --gap-nominal: the gap\n"
                       "                diagnosis's nominal (open loop torque_actual -> motor_velocity, imu_rate);\n"
+                      "                with --closed-loop CTRL.bin the closed loop of ArmCtrl from that table\n"
+                      "                (path relative to the nominal; replayed by gap-plc, docs/gap.md) and the\n"
+                      "                drive (delay, limit, current loop) -> motor_angle, motor_velocity, imu_rate;\n"
                       "                --save-scenario: hil_bench scenario lines for the arm\n\n"
                       "  beam        PS Timoshenko beam (seed 004): --N 9 --collocation gl|eq --L --r_t --r_r --modes 5\n"
                       "  arm         drive + beam (3.103): --N 9 --full (no Krylov reduction) --shifts 16,18.43,115.6\n"

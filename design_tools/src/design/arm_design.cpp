@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include <nlohmann/json.hpp>
+#include <unsupported/Eigen/MatrixFunctions>
 
 #include "fracdesign/design/riccati.hpp"
 #include "fracdesign/io/signal_csv.hpp"
@@ -578,6 +579,77 @@ nlohmann::json arm_gap_nominal(const ArmDocument& a)
             {"outputs", {"motor_velocity", "imu_rate"}},
             {"states", states},
             {"gap", {{"velocity", "motor_velocity"}, {"force_input", "torque_actual"}}}};
+}
+
+nlohmann::json arm_gap_nominal_closed(const ArmDocument& a, const std::string& table)
+{
+    if (table.empty()) throw std::invalid_argument("--closed-loop: the ArmCtrl table file name is empty");
+    const ArmBuild b = build_arm_from_document(a, a.design.N, false, {});
+    const StateSpace m = arm_document_measured(a, b);  // outputs theta_M, theta_M', psi'(z_imu); input tau_M
+    const Eigen::Index n = m.nx();
+    // The drive (hil/drive.h, seed 004 Sec. 8.2): the current loop tau_a' = (c - tau_a)/tau_c with the
+    // command c held over the cycle, tau_a(k+1) = e tau_a(k) + (1 - e) c(k), e = exp(-T/tau_c) (0 for
+    // an ideal loop); the shaft gets the torque ramped linearly from tau_a(k) to tau_a(k+1) over the
+    // cycle (first-order hold), so x(k+1) = Phi x + G0 tau_a(k) + G1 (tau_a(k+1) - tau_a(k)) / T with
+    // [Phi G0 G1] the first block row of exp([[A, B, 0], [0, 0, 1], [0, 0, 0]] T).
+    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n + 2, n + 2);
+    M.topLeftCorner(n, n) = m.A;
+    M.block(0, n, n, 1) = m.B.col(0);
+    M(n, n + 1) = 1.0;
+    const Eigen::MatrixXd E = (M * a.T).exp();
+    const Eigen::MatrixXd Phi = E.topLeftCorner(n, n);
+    const Eigen::VectorXd G0 = E.block(0, n, n, 1), G1 = E.block(0, n + 1, n, 1) / a.T;
+    const double e = a.current_tau > 0.0 ? std::exp(-a.T / a.current_tau) : 0.0;
+    // states [x; tau_a; IMU delay chain (7.14)-(7.15)]
+    const Eigen::Index nd = a.dout, N = n + 1 + nd;
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(N, N), B = Eigen::MatrixXd::Zero(N, 1), C = Eigen::MatrixXd::Zero(3, N);
+    A.topLeftCorner(n, n) = Phi;
+    A.block(0, n, n, 1) = G0 + G1 * (e - 1.0);
+    B.topRows(n) = G1 * (1.0 - e);
+    A(n, n) = e;
+    B(n, 0) = 1.0 - e;
+    C.block(0, 0, 2, n) = m.C.topRows(2);
+    if (nd > 0) {
+        A.block(n + nd, 0, 1, n) = m.C.row(2);
+        for (Eigen::Index j = 0; j + 1 < nd; ++j) A(n + 1 + j, n + 2 + j) = 1.0;
+        C(2, n + 1) = 1.0;
+    } else {
+        C.block(2, 0, 1, n) = m.C.row(2);
+    }
+    std::vector<std::string> states = m.states;
+    states.push_back("torque_actual");
+    for (Eigen::Index j = 0; j < nd; ++j) states.push_back("imu_delay[" + std::to_string(j + 1) + "]");
+    const nlohmann::json controller = {
+        {"kind", "armctrl"},
+        {"table", table},
+        {"inputs", {{"MotorAngle", "motor_angle"}, {"MotorVelocity", "motor_velocity"}, {"TipRate", "imu_rate"}}},
+        {"output", "torque_cmd"}};
+    return {{"schema", "frac.model"},
+            {"version", 1},
+            {"kind", "statespace"},
+            {"name", "arm_closed_loop_" + a.name},
+            {"description", "closed-loop gap nominal of the arm document '" + a.name + "' (fracdesign model --arm --gap-nominal --closed-loop): "
+                            "ArmCtrl from the table '" + table + "' (replayed by gap-plc in the task runtime) on the full arm (N = " +
+                                std::to_string(b.beam.N) + ", " + std::to_string(n) + " states), the drive's delay d_i = " +
+                                std::to_string(a.di) + " cycles, peak torque limit, current loop (tau_c = " + fmt(a.current_tau) +
+                                " s) and first-order hold to the shaft; IMU delayed d_o = " + std::to_string(nd) + " samples; no friction"},
+            {"time", "discrete"},
+            {"Ts", a.T},
+            {"A", mat(A)},
+            {"B", mat(B)},
+            {"C", mat(C)},
+            {"D", mat(Eigen::MatrixXd::Zero(3, 1))},
+            {"inputs", {"torque_cmd"}},
+            {"outputs", {"motor_angle", "motor_velocity", "imu_rate"}},
+            {"states", states},
+            {"gap", {{"velocity", "motor_velocity"},
+                     {"force_input", "torque_cmd"},
+                     {"units", {{"torque_cmd", "N m"}, {"motor_angle", "rad"}, {"motor_velocity", "rad/s"}, {"imu_rate", "rad/s"}}},
+                     {"closed_loop", {{"references", nlohmann::json::array()},
+                                      {"measured", {"motor_angle", "motor_velocity", "imu_rate"}},
+                                      {"controller", controller},
+                                      {"delay_samples", a.di},
+                                      {"saturation", a.torque_peak}}}}}};
 }
 
 std::string arm_hil_scenario(const ArmDocument& a, const std::string& plant_table, const std::string& ctrl_table, double duration)

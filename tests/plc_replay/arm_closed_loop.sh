@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# Closed-loop gap diagnosis of rig records through ArmCtrl itself (issue 21 items 2, 3, 5), for one arm
+# document: the closed-loop nominal (fracdesign model --arm --gap-nominal --closed-loop), ArmCtrl's table for
+# MOVE with its torque limit lowered to 0.8 x the peak command of an unlimited run (so the loop rides its
+# limit; the table is re-sealed with its CRC), rig records without and with Coulomb friction withheld, and
+# gap-plc on each; then gap-plc's and fracdesign gap's refusals. Checks in arm_closed_loop_check.py.
+#   arm_closed_loop.sh FRACDESIGN HIL_BENCH GAP_PLC ARM.json MOVE OUTDIR
+set -euo pipefail
+fd=$1 bench=$2 gapplc=$3 arm=$4 move=$5 out=$6
+here=$(cd "$(dirname "$0")" && pwd)
+py=/usr/bin/python3
+rm -rf "$out"; mkdir -p "$out"; cd "$out"
+"$fd" model --arm "$arm" --save-plant plant.bin --gap-nominal nominal.json --closed-loop ctrl.bin \
+  --save-scenario scenario.txt --plant-table plant.bin --ctrl-table ctrl.bin --duration 4.0 > /dev/null
+"$fd" armctrl --arm "$arm" --move "$move" --post 0.5 --out ctrl_free.bin > /dev/null
+"$bench" --scenario scenario.txt --set ctrl.table=ctrl_free.bin --out free > /dev/null
+peak=$($py -c "import csv,sys; print(max(abs(float(r['torque_cmd'])) for r in csv.DictReader(open(sys.argv[1]))))" free/signals.csv)
+limit=$($py -c "print(0.8 * $peak)")
+$py "$here/ptable_set.py" ctrl_free.bin ctrl.bin torque_limit "$limit"
+rated=$(sed -n 's/^drive.torque_rated = //p' scenario.txt)
+fc=$($py -c "print(0.1 * float('$rated'))")
+"$bench" --scenario scenario.txt --out clean > /dev/null
+"$bench" --scenario scenario.txt --set imu.gyro_noise=0 --out quiet > /dev/null
+# Coulomb withheld: under the lowered limit the friction makes the loop ride it most of the record and
+# no candidate explains it (held-out gap 0.73, verdict none: docs/gap.md); the unlimited table instead
+"$bench" --scenario scenario.txt --set ctrl.table=ctrl_free.bin --set plant.fric_b0="$fc" --out coulomb > /dev/null
+# The rig's CSV does not log when the PLC's tasks start (the controller node starts them once the drive is
+# enabled and an IMU reading came): the records get a column `run`, 1 from the first sample whose command
+# is nonzero (the gyro noise makes the first task cycle's command nonzero), and the nominal maps it to Run.
+for r in clean quiet coulomb; do $py "$here/add_run_column.py" $r/signals.csv $r/record.csv; done
+$py - nominal.json nominal_run.json <<'PY'
+import json, sys
+n = json.load(open(sys.argv[1]))
+n["gap"]["closed_loop"]["references"] = ["run"]
+n["gap"]["closed_loop"]["controller"]["inputs"]["Run"] = "run"
+json.dump(n, open(sys.argv[2], "w"), indent=1)
+n["gap"]["closed_loop"]["controller"]["table"] = "ctrl_free.bin"
+json.dump(n, open("nominal_free.json", "w"), indent=1)
+PY
+"$gapplc" --model nominal_run.json --data clean/record.csv --out gap_clean > gap_clean.txt 2>/dev/null
+"$gapplc" --model nominal_free.json --data coulomb/record.csv --out gap_coulomb > gap_coulomb.txt 2>/dev/null
+# refusals: one line naming the field, exit 1, nothing written
+refuse() {  # refuse NAME EXPECTED-TEXT PROGRAM ARGS...
+  local name=$1 want=$2; shift 2
+  set +e; "$@" --out "refused_$name" > /dev/null 2> "refused_$name.err"; local st=$?; set -e
+  [ $st -ne 0 ] || { echo "FAIL $name: exit 0"; exit 1; }
+  [ ! -e "refused_$name" ] || { echo "FAIL $name: wrote refused_$name"; exit 1; }
+  grep -qF -- "$want" "refused_$name.err" || { echo "FAIL $name: stderr lacks '$want':"; cat "refused_$name.err"; exit 1; }
+  [ "$(wc -l < "refused_$name.err")" -eq 1 ] || { echo "FAIL $name: not one line:"; cat "refused_$name.err"; exit 1; }
+  echo "refused $name: $(cat "refused_$name.err")"
+}
+$py - nominal_run.json <<'PY'
+import json, sys
+n = json.load(open(sys.argv[1]))
+def variant(name, f):
+    m = json.loads(json.dumps(n)); f(m); json.dump(m, open(name, "w"))
+variant("nominal_missing.json", lambda m: m["gap"]["closed_loop"]["controller"].update(table="no_such.bin"))
+variant("nominal_crc.json", lambda m: m["gap"]["closed_loop"]["controller"].update(table="ctrl_crc.bin"))
+variant("nominal_cut.json", lambda m: m["gap"]["closed_loop"]["controller"].update(table="ctrl_cut.bin"))
+variant("nominal_ts.json", lambda m: m["gap"]["closed_loop"]["controller"].update(table="ctrl_ts.bin"))
+variant("nominal_column.json", lambda m: (m["gap"]["closed_loop"].update(references=["enable"]),
+                                          m["gap"]["closed_loop"]["controller"]["inputs"].update(Run="enable")))
+PY
+$py - ctrl.bin <<'PY'
+import sys
+b = bytearray(open(sys.argv[1], "rb").read())
+c = bytearray(b); c[len(c) // 2] ^= 0x40; open("ctrl_crc.bin", "wb").write(bytes(c))
+open("ctrl_cut.bin", "wb").write(bytes(b[: len(b) // 3]))
+PY
+$py "$here/ptable_set.py" ctrl.bin ctrl_ts.bin ts 0.002
+refuse missing_table "gap.closed_loop.controller.table: cannot open the ArmCtrl table" "$gapplc" --model nominal_missing.json --data clean/record.csv
+refuse crc "field crc32" "$gapplc" --model nominal_crc.json --data clean/record.csv
+refuse truncated "ParTable refuses the data object" "$gapplc" --model nominal_cut.json --data clean/record.csv
+refuse ts_mismatch "cycle time 'ts' = 0.002 s is not the record's sample time" "$gapplc" --model nominal_ts.json --data clean/record.csv
+refuse unknown_column "reference 'enable' is not a column" "$gapplc" --model nominal_column.json --data clean/record.csv
+refuse fracdesign_gap "run the same command with gap-plc" "$fd" gap --model nominal_run.json --data clean/record.csv
+$py "$here/arm_closed_loop_check.py" . "$limit"
