@@ -21,10 +21,16 @@
 #include "ArmCtrl.h"
 #include "frac/lqg.h"
 #include "frac/ptable.h"
+#include "fracdesign/design/arm_design.hpp"
 #include "fracdesign/design/armctrl.hpp"
 #include "fracdesign/tables/ptable.hpp"
 #include <nlohmann/json.hpp>
 #include "run_command.hpp"
+
+// design_tools may not include plc_blocks, so arm_design.hpp states the PLC
+// program's LQG state capacity itself; this is where the two meet.
+static_assert(fracdesign::design::kArmctrlLqgNmax == ARMCTRL_LQG_NMAX,
+              "arm_design.hpp's kArmctrlLqgNmax must equal ArmCtrl.h's ARMCTRL_LQG_NMAX");
 
 using namespace fracdesign;
 
