@@ -201,9 +201,15 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     //   D = -k clamp(q, -w/2, w/2)        (play of width w: k dz(q) - k q)
     //     + c D^alpha q                   (Grunwald-Letnikov of order alpha on q).
     // At most one coupling holds the play and one the fractional term (each
-    // effect kind appears once). The fractional term is evaluated at
-    // mid-sample, q = (q(k) + q(k+1))/2 with the nominal q(k+1), and held
-    // over the sample; its memory covers 20/w of the block's slowest mode
+    // effect kind appears once). The fractional term is held over the
+    // sample at its value at mid-sample: the Grunwald-Letnikov sum of step h
+    // is centred alpha h/2 behind its newest sample (the shifted Grunwald
+    // formula, D^alpha q(t) = h^-alpha sum_j w_j q(t - (j - alpha/2) h) to
+    // second order, Meerschaert & Tadjeran 2004), so it is fed
+    // q(k + (1 + alpha)/2), interpolated between q(k) and the nominal
+    // q(k+1) (pushed with the end state once known). Fed the plain midpoint,
+    // it lags alpha/2 samples: at 0.165 rad per sample that biased c by 10 %
+    // (test_gap_sites_kv). Its memory covers 20/w of the block's slowest mode
     // (coupling_gl_memory). The play is applied on sub-steps of its
     // coupling's state block (nominal.hpp, Coupling), each an implicit
     // trapezoid D(q at mid-sub-step) solved by fixed-point iteration
@@ -228,6 +234,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     // pushed once the sample's end state is known.
     std::vector<frac_real> cgl_store;
     frac_gl gl_q;
+    const double fshift = 0.5 * (1.0 + calpha);
     if (cf) gl_init_or_throw(gl_q, calpha, Ts, coupling_gl_memory(*cf, Ts, s.fractional_memory, long(N)), cgl_store);
     // Deflection twist . x of a plant state in coupling c.
     auto twist_of = [&](const Coupling& c, const std::vector<double>& xs) {
@@ -378,7 +385,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
             const double qp = twist_of(*cf, xn);  // the nominal q(k+1)
             frac_real y0 = 0;
             frac_gl_free_response(&gl_q, &y0);
-            const double Dfr = cfc * (double(frac_gl_feedthrough(&gl_q)) * 0.5 * (q0f + qp) + double(y0));
+            const double Dfr = cfc * (double(frac_gl_feedthrough(&gl_q)) * (q0f + fshift * (qp - q0f)) + double(y0));
             for (int i = 0; i < nx; ++i) xn[size_t(i)] += cf->torque(i) * Dfr;
         }
         if (cb) {
@@ -407,7 +414,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
         }
         if (cf) {
             frac_real dummy = 0;
-            frac_gl_step(&gl_q, frac_real(0.5 * (q0f + twist_of(*cf, xn))), &dummy);
+            frac_gl_step(&gl_q, frac_real(q0f + fshift * (twist_of(*cf, xn) - q0f)), &dummy);
         }
         x.swap(xn);
         if (series) {
