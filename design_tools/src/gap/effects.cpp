@@ -252,10 +252,14 @@ const std::vector<EffectDescriptor>& catalog()
              s.spec = {{1.0, flo, fhi, false}, {1.0, 0.005, 0.5, false}};
              for (size_t i = 0; i < ny; ++i) s.spec.push_back({c.Sy[i] / c.Su, -kBig, kBig, false});
              // Starts: the largest peaks of the nominal residual spectrum and a
-             // log grid of 6 per decade over the band, screened by cost; gains
-             // start at 0.1 std(y)/rms(u) (with 0 the screen could not rank them).
+             // log grid over the band, screened by cost; gains start at 0.1
+             // std(y)/rms(u) (with 0 the screen could not rank them). At the
+             // outputs 6 per decade; in series 24 per decade: a series mode
+             // moves the loop's own dynamics, so one started 20 % off its
+             // frequency costs more than none and the screen drops it.
              std::vector<double> fs = c.residual_peaks_hz;
-             for (double f = flo; f <= fhi; f *= std::pow(10.0, 1.0 / 6.0)) fs.push_back(f);
+             const double per_decade = site == Site::force_input ? 24.0 : 6.0;
+             for (double f = flo; f <= fhi; f *= std::pow(10.0, 1.0 / per_decade)) fs.push_back(f);
              for (double f : fs) {
                  if (f < flo || f > fhi) continue;
                  std::vector<double> st = {f, 0.05};
