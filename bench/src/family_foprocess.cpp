@@ -157,11 +157,11 @@ TruthEffect draw_effect(const std::string& e, double ystd, hil_rng* rng, Injecti
     } else if (e == "saturation") {
         in.limit = uniform(rng, 0.55, 0.8);
         key("input.limit", in.limit);
-        t.params = {{"limit", in.limit}};
+        t.params = {{"lower", -in.limit}, {"upper", in.limit}};
     } else if (e == "deadzone") {
         in.dz = uniform(rng, 0.05, 0.2);
         key("input.deadzone", in.dz);
-        t.params = {{"half_width", in.dz}};
+        t.params = {{"lower", -in.dz}, {"upper", in.dz}};
     } else if (e == "backlash") {
         in.play = uniform(rng, 0.1, 0.4);
         key("input.play", in.play);

@@ -42,7 +42,9 @@ struct Plant {
 struct Injection {
     int extra_delay = 0;        // samples, drive command path
     int vel_delay = 0;          // samples, velocity sensor
-    double gain = 1, limit = kInf, dz = 0;         // drive: gain, limit [V], dead zone half-width [V]
+    double gain = 1;                                // drive gain
+    double lim_lo = -kInf, lim_hi = kInf;           // drive limits [V] (asymmetric)
+    double dz_lo = 0, dz_hi = 0;                    // drive dead-zone edges [V] (asymmetric, lower <= 0 <= upper)
     double Fc = 0, Fv = 0, Fs = 0, vs = 1;         // friction [V], [V s/rad], Stribeck static level [V], [rad/s]
     bool stribeck = false;
     double vel_offset = 0;      // [rad/s]
@@ -118,8 +120,8 @@ Run simulate(const Plant& p, const Injection& in, hil_rng* noise)
         out.ref(k) = r;
         out.cmd(k) = c;
         // The drive (the diagnosis's order: gain, limit, dead zone).
-        double u = std::clamp(in.gain * cbuf.back(), -in.limit, in.limit);
-        if (in.dz > 0) u = std::fabs(u) <= in.dz ? 0.0 : u - std::copysign(in.dz, u);
+        double u = std::clamp(in.gain * cbuf.back(), in.lim_lo, in.lim_hi);
+        u = u > in.dz_hi ? u - in.dz_hi : (u < in.dz_lo ? u - in.dz_lo : 0.0);
         const double wm = 2 * M_PI * in.mode_hz;
         for (int s = 0; s < kSub; ++s) {
             double ud = u;
@@ -181,13 +183,18 @@ TruthEffect draw_effect(const std::string& e, const Plant& p, double peak, hil_r
         key("axis.stribeck_vs", in.vs);
         t.params = {{"Fc", in.Fc}, {"Fs", in.Fs}};
     } else if (e == "deadzone") {
-        in.dz = uniform(rng, 0.03, 0.1) * peak;
-        key("drive.deadzone_V", in.dz);
-        t.params = {{"half_width", in.dz}};
+        // Asymmetric: each edge drawn on its own.
+        in.dz_lo = -uniform(rng, 0.03, 0.1) * peak;
+        in.dz_hi = uniform(rng, 0.03, 0.1) * peak;
+        key("drive.deadzone_low_V", in.dz_lo);
+        key("drive.deadzone_high_V", in.dz_hi);
+        t.params = {{"lower", in.dz_lo}, {"upper", in.dz_hi}};
     } else if (e == "saturation") {
-        in.limit = uniform(rng, 0.55, 0.8) * peak;
-        key("drive.limit_V", in.limit);
-        t.params = {{"limit", in.limit}};
+        in.lim_lo = -uniform(rng, 0.55, 0.8) * peak;
+        in.lim_hi = uniform(rng, 0.55, 0.8) * peak;
+        key("drive.limit_low_V", in.lim_lo);
+        key("drive.limit_high_V", in.lim_hi);
+        t.params = {{"lower", in.lim_lo}, {"upper", in.lim_hi}};
     } else if (e == "gain_error") {
         in.gain = hil_rng_uniform(rng) < 0.5 ? uniform(rng, 0.7, 0.88) : uniform(rng, 1.12, 1.4);
         key("drive.gain", in.gain);
@@ -227,8 +234,10 @@ Injection injection_of(const BenchCase& c)
             else if (k == "axis.stribeck_Fc_V") { in.stribeck = true; in.Fc = v; }
             else if (k == "axis.stribeck_Fs_V") in.Fs = v;
             else if (k == "axis.stribeck_vs") in.vs = v;
-            else if (k == "drive.deadzone_V") in.dz = v;
-            else if (k == "drive.limit_V") in.limit = v;
+            else if (k == "drive.deadzone_low_V") in.dz_lo = v;
+            else if (k == "drive.deadzone_high_V") in.dz_hi = v;
+            else if (k == "drive.limit_low_V") in.lim_lo = v;
+            else if (k == "drive.limit_high_V") in.lim_hi = v;
             else if (k == "drive.gain") in.gain = v;
             else if (k == "velocity.offset") in.vel_offset = v;
             else if (k == "encoder.step_rad") in.pos_quant = v;

@@ -191,11 +191,11 @@ TruthEffect draw_effect(const std::string& e, hil_rng* rng, double cmd_peak)
     } else if (e == "deadzone") {
         const double a = U(3, 10);
         t.rig = {{"drive.deadzone", fmt(a)}};
-        t.params = {{"half_width", a}};
+        t.params = {{"lower", -a}, {"upper", a}};
     } else if (e == "saturation") {
         const double L = U(0.55, 0.8) * cmd_peak;
         t.rig = {{"drive.torque_rated", fmt(L)}, {"drive.torque_peak", fmt(L)}};
-        t.params = {{"limit", L}};
+        t.params = {{"lower", -L}, {"upper", L}};
     } else if (e == "fractional_damping") {
         const double c = U(200, 800), a = U(0.3, 0.7);
         t.rig = {{"plant.kv_damping", fmt(c)}, {"plant.kv_order", fmt(a)}};
@@ -535,7 +535,7 @@ void diagnose_case(const BenchOptions& opt, const std::vector<std::string>& outp
     out.outcome.shrink = out.result.verdict.shrink;
     for (const EffectInstance& e : out.result.verdict.effects) {
         out.outcome.verdict.push_back(effect_name(e.kind));
-        const std::vector<std::string> pn = param_names(e.kind, out.result.outputs);
+        const std::vector<std::string> pn = param_names(e.kind, out.result.outputs, e.site);
         std::map<std::string, double> p;
         for (size_t i = 0; i < pn.size() && i < e.params.size(); ++i) p[pn[i]] = e.params[i];
         out.outcome.verdict_params.push_back(p);

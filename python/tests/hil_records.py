@@ -7,7 +7,7 @@ generator here (not a value any document prints): a torque-constant error
 (drive.gain), a power-stage dead zone (drive.deadzone), viscous or Coulomb
 motor friction (plant.friction = 0 with fric_b1 / fric_b0), or nothing.
 truth: the effect and the diagnosis parameter it maps to (docs/hil.md,
-docs/gap.md): gain_error.gain = drive.gain, deadzone.half_width =
+docs/gap.md): gain_error.gain = drive.gain, deadzone.upper = -deadzone.lower =
 drive.deadzone, viscous_friction.Fv = fric_b1, coulomb_friction.Fc = fric_b0.
 """
 import json
@@ -37,7 +37,7 @@ def draw(rng, family):
         return no_friction + ["drive.gain = %r" % g], {"effect": family, "params": {"gain": g}}
     if family == "deadzone":
         a = float(rng.uniform(2.0, 6.0))
-        return no_friction + ["drive.deadzone = %r" % a], {"effect": family, "params": {"half_width": a}}
+        return no_friction + ["drive.deadzone = %r" % a], {"effect": family, "params": {"lower": -a, "upper": a}}
     if family == "viscous_friction":
         b = float(rng.uniform(1.5, 4.0))
         return ["plant.friction = 0", "plant.fric_b1 = %r" % b, "plant.fric_b0 = 0"], {"effect": family, "params": {"Fv": b}}

@@ -100,7 +100,7 @@ std::string load_error(const nlohmann::json& doc)
 TEST(GapCoupling, zero_play_and_zero_damping_replay_the_nominal)
 {
     const NominalModel m = nominal_from_json(plant_doc(), kTs);
-    ASSERT_TRUE(m.has_coupling);
+    ASSERT_EQ(m.couplings.size(), 1u);
     const ReplaySetup s = make_replay_setup(m, drive(), {}, {"wm", "wl"});
     const ReplayTrace nom = replay(s, {});
     const ReplayTrace zero = replay(s, {{Effect::backlash, {0.0}, Site::coupling}, {Effect::fractional_damping, {0.0, 0.5}, Site::coupling}});

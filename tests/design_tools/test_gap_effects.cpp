@@ -86,12 +86,13 @@ Signals record(const NominalModel& m, const std::vector<EffectInstance>& truth)
 struct Case {
     Effect effect;
     std::vector<double> params;
+    Site site = Site::force_input;
 };
 
 void expect_found(const Case& c, double min_shrink, bool closed_loop = false)
 {
     const NominalModel m = nominal_from_json(closed_loop ? loop_doc() : plant_doc(), kTs);
-    const Signals data = record(m, {{c.effect, c.params}});
+    const Signals data = record(m, {{c.effect, c.params, c.site}});
     GapOptions opt;
     const GapResult r = diagnose(m, data, nullptr, opt);
     ASSERT_FALSE(r.candidates.empty());
@@ -124,10 +125,10 @@ TEST(GapEffects, coulomb_friction_is_found) { expect_found({Effect::coulomb_fric
 TEST(GapEffects, viscous_friction_is_found) { expect_found({Effect::viscous_friction, {3.0}}, 0.8); }
 TEST(GapEffects, stribeck_friction_is_found) { expect_found({Effect::stribeck_friction, {1.0, 4.0, 0.3}}, 0.8); }
 TEST(GapEffects, backlash_is_found) { expect_found({Effect::backlash, {4.0}}, 0.8); }
-TEST(GapEffects, deadzone_is_found) { expect_found({Effect::deadzone, {3.0}}, 0.8); }
-TEST(GapEffects, saturation_is_found) { expect_found({Effect::saturation, {10.0}}, 0.8); }
+TEST(GapEffects, deadzone_is_found) { expect_found({Effect::deadzone, {-3.0, 3.0}}, 0.8); }
+TEST(GapEffects, saturation_is_found) { expect_found({Effect::saturation, {-10.0, 10.0}}, 0.8); }
 TEST(GapEffects, fractional_damping_is_found) { expect_found({Effect::fractional_damping, {2.0, 0.5}}, 0.8); }
-TEST(GapEffects, unmodelled_mode_is_found) { expect_found({Effect::unmodelled_mode, {6.0, 0.03, 0.01, 0.2}}, 0.8); }
+TEST(GapEffects, unmodelled_mode_is_found) { expect_found({Effect::unmodelled_mode, {6.0, 0.03, 0.01, 0.2}, Site::output}, 0.8); }
 TEST(GapEffects, gain_error_is_found) { expect_found({Effect::gain_error, {1.3}}, 0.8); }
 TEST(GapEffects, sensor_offset_is_found) { expect_found({Effect::sensor_offset, {0.1, 0.2}}, 0.8); }
 TEST(GapEffects, quantization_is_found) { expect_found({Effect::quantization, {0.05, 0.1}}, 0.5); }

@@ -126,7 +126,8 @@ TEST(GapVerdict, refuses_an_overflowing_sample_by_name)
 TEST(GapVerdict, flags_a_parameter_at_its_bound_and_not_the_true_effects)
 {
     // Viscous friction Fv = 0.35 a (in the lag's force units per velocity);
-    // the dead-zone candidate, fitted on a record without one, sits at 0.
+    // the dead-zone candidate, fitted on a record without one, has both
+    // edges at 0: the lower edge at its upper bound, the upper at its lower.
     const double Fv = 0.35 * kA / kB;
     const NominalModel m = nominal_from_json(lag_doc(kA), kTs);
     const GapResult r = diagnose(m, record({{Effect::viscous_friction, {Fv}}}), nullptr,
@@ -139,7 +140,8 @@ TEST(GapVerdict, flags_a_parameter_at_its_bound_and_not_the_true_effects)
     for (const FitReport& c : r.candidates)
         if (!c.effects.empty() && c.effects[0].kind == Effect::deadzone) {
             seen = true;
-            EXPECT_NE(c.unidentified[0][0].find("lower bound"), std::string::npos) << c.unidentified[0][0];
+            EXPECT_NE(c.unidentified[0][0].find("upper bound 0"), std::string::npos) << c.unidentified[0][0];
+            EXPECT_NE(c.unidentified[0][1].find("lower bound 0"), std::string::npos) << c.unidentified[0][1];
         }
     EXPECT_TRUE(seen);
     const nlohmann::json j = result_json(r);

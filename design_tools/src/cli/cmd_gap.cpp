@@ -109,7 +109,7 @@ int run_gap(const std::vector<std::string>& argv)
     std::cout << "  candidates (best first):\n";
     for (size_t i = 0; i < j["candidates"].size() && i < 6; ++i) {
         const auto& c = j["candidates"][i];
-        const std::string name = c["effect"].get<std::string>() + (c["site"] == "coupling" ? " (in the coupling)" : "");
+        const std::string name = c["effect"].get<std::string>() + gap::site_phrase(c["effect"], c["site"], c.value("coupling", ""));
         std::snprintf(b, sizeof b, "    %-36s shrink %6.1f %%  score %7.3f\n", name.c_str(), 100 * c["shrink"].get<double>(),
                       c["score"].get<double>());
         std::cout << b;
@@ -117,7 +117,7 @@ int run_gap(const std::vector<std::string>& argv)
     std::string v;
     for (size_t i = 0; i < j["verdict"]["effects"].size(); ++i)
         v += (v.empty() ? "" : " + ") + j["verdict"]["effects"][i].get<std::string>() +
-             (j["verdict"]["sites"][i] == "coupling" ? " (in the coupling)" : "");
+             gap::site_phrase(j["verdict"]["effects"][i], j["verdict"]["sites"][i], j["verdict"]["couplings"][i].get<std::string>());
     std::snprintf(b, sizeof b, "  verdict: %s (held-out gap %.4g -> %.4g, shrink %.1f %%)\n", v.c_str(),
                   r.gap_before_total, r.verdict.gap, 100 * r.verdict.shrink);
     std::cout << b;

@@ -156,7 +156,7 @@ struct FitProblem {
         std::vector<EffectInstance> out;
         size_t k = 0;
         for (const EffectSetup& e : effects) {
-            EffectInstance in{e.kind, {}, e.site};
+            EffectInstance in{e.kind, {}, e.site, e.coupling};
             for (const ParamSpec& p : e.spec) in.params.push_back(p.scale * theta[k++]);
             out.push_back(in);
         }
@@ -542,6 +542,7 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
                                          "'; give one for every compared output, or leave gap.noise out");
             noise_sd.push_back(it->second);
         }
+    for (const Coupling& c : model.couplings) R.coupling_names.push_back(c.name);
     ReplaySetup fit_setup = make_replay_setup(model, data, opt.inputs, outs);
     ReplaySetup eval_setup_v;
     if (validate) eval_setup_v = make_replay_setup(model, *validate, opt.inputs, outs);
@@ -577,10 +578,10 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
     ctx.Su = std::max(rms(nom.u.head(R.fit_samples)), 1e-12);
     ctx.Sv = std::max(rms(nom.v.head(R.fit_samples)), 1e-12);
     ctx.umax = std::max(nom.u.head(R.fit_samples).cwiseAbs().maxCoeff(), 1e-12);
-    if (model.has_coupling) {
-        ctx.Sq = rms(nom.twist.head(R.fit_samples));
-        ctx.kq = model.coupling.stiffness;
-    }
+    // Each coupling's scales (FitContext::Sq, kq, wq), set into ctx per site below.
+    std::vector<double> coupling_Sq;
+    for (size_t i = 0; i < model.couplings.size(); ++i)
+        coupling_Sq.push_back(rms(nom.twists.col(Eigen::Index(i)).head(R.fit_samples)));
     fit_setup.eps_velocity = 0.01 * ctx.Sv;
     if (validate) eval_setup_v.eps_velocity = fit_setup.eps_velocity;
     std::vector<double> sigma;
@@ -755,16 +756,29 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
         // The effect at the force input and, for backlash and fractional
         // damping with a declared coupling, in the coupling: each variant is
         // fitted, the one with the better score is the effect's candidate.
+        // The effect at each of its sites on this model (effect_sites: the
+        // force input, the outputs, each declared coupling): each variant is
+        // fitted, the one with the better score is the effect's candidate.
         std::vector<EffectSetup> variants;
-        if (needs_velocity(e) && model.velocity < 0) {
-            R.skipped.push_back(effect_name(e) + (model.has_coupling && coupling_capable(e) ? " at the force input" : "") +
-                                ": the model names no velocity output (gap.velocity)");
-        } else {
-            variants.push_back(descriptor(e).setup(ctx, Site::force_input));
-        }
-        if (model.has_coupling && coupling_capable(e)) {
-            if (ctx.Sq > 0) variants.push_back(descriptor(e).setup(ctx, Site::coupling));
-            else R.skipped.push_back(effect_name(e) + " in the coupling: the nominal replay never deflects it");
+        for (const std::pair<Site, int>& site : effect_sites(e, model)) {
+            if (site.first == Site::coupling) {
+                const Coupling& cp = model.couplings[size_t(site.second)];
+                if (!(coupling_Sq[size_t(site.second)] > 0)) {
+                    R.skipped.push_back(effect_name(e) + " in the coupling '" + cp.name + "': the nominal replay never deflects it");
+                    continue;
+                }
+                FitContext cc = ctx;
+                cc.Sq = coupling_Sq[size_t(site.second)];
+                cc.kq = cp.stiffness;
+                cc.wq = cp.w_slow;
+                cc.coupling = site.second;
+                variants.push_back(descriptor(e).setup(cc, Site::coupling));
+            } else if (needs_velocity(e) && model.velocity < 0) {
+                R.skipped.push_back(effect_name(e) + (model.couplings.empty() ? "" : " at the force input") +
+                                    ": the model names no velocity output (gap.velocity)");
+            } else {
+                variants.push_back(descriptor(e).setup(ctx, site.first));
+            }
         }
         for (const EffectSetup& es : variants) {
             if (es.starts.empty()) {
@@ -798,7 +812,9 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
                 if (opt.progress)
                     opt.progress("gap: fitted " + std::to_string(done) + "/" + std::to_string(jobs.size()) + " candidates (" +
                                  effect_name(jobs[i].setup.kind) +
-                                 (jobs[i].setup.site == Site::coupling ? " in the coupling" : "") + ")");
+                                 (jobs[i].setup.site == Site::coupling
+                                      ? " in the coupling '" + model.couplings[size_t(jobs[i].setup.coupling)].name + "'"
+                                      : jobs[i].setup.site == Site::output ? " at the outputs" : "") + ")");
             }
         };
         const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
@@ -928,11 +944,14 @@ nlohmann::json fit_json(const GapResult& R, const FitReport& f, const std::vecto
 {
     nlohmann::json params = nlohmann::json::object(), sd = nlohmann::json::object(), units = nlohmann::json::object(),
                    unid = nlohmann::json::object();
-    std::vector<std::string> names, sites;
+    std::vector<std::string> names, sites, couplings;
     for (size_t i = 0; i < f.effects.size(); ++i) {
         const EffectInstance& e = f.effects[i];
-        sites.push_back(e.site == Site::coupling ? "coupling" : "force_input");
-        const std::vector<ParamInfo> pn = descriptor(e.kind).params(R.outputs, R.units, e.site);
+        sites.push_back(site_name(e.site));
+        couplings.push_back(e.site == Site::coupling && size_t(e.coupling) < R.coupling_names.size()
+                                ? R.coupling_names[size_t(e.coupling)] : "");
+        const std::vector<ParamInfo> pn =
+            descriptor(e.kind).params(R.outputs, units_at(R.units, e.site == Site::coupling ? e.coupling : -1), e.site);
         const std::string prefix = f.effects.size() > 1 ? effect_name(e.kind) + "." : "";
         for (size_t j = 0; j < pn.size(); ++j) {
             params[prefix + pn[j].name] = num(e.params[j]);
@@ -952,9 +971,12 @@ nlohmann::json bj = nlohmann::json::array();
     if (names.empty()) {
         names.push_back("none");
         sites.push_back("");
+        couplings.push_back("");
     }
     j["effects"] = names;
     j["sites"] = sites;
+    j["couplings"] = couplings;  // the coupling's name for effects in a coupling, else ""
+
     return j;
 }
 
@@ -981,8 +1003,10 @@ nlohmann::json result_json(const GapResult& R)
         nlohmann::json c = fit_json(R, f, bands);
         c["effect"] = c["effects"][0];
         c["site"] = c["sites"][0];
+        c["coupling"] = c["couplings"][0];
         c.erase("effects");
         c.erase("sites");
+        c.erase("couplings");
         cj.push_back(c);
     }
     j["candidates"] = cj;

@@ -54,7 +54,7 @@ const std::vector<EffectDescriptor>& catalog()
          [](const std::vector<std::string>&, const Units&, Site) { return std::vector<ParamInfo>{{"delay_s", "s"}}; },
          [](const FitContext& c, Site) {
              // The integer grid gives the starts, the solver refines the best three.
-             EffectSetup s{Effect::input_delay, Site::force_input, {}, {}, true};
+             EffectSetup s{Effect::input_delay, Site::force_input, 0, {}, {}, true};
              const long dmax = delay_grid_max(c);
              s.spec = {{c.Ts, 0, double(dmax + 1), false}};
              for (long d = 1; d <= dmax; ++d) s.starts.push_back({double(d)});
@@ -70,7 +70,7 @@ const std::vector<EffectDescriptor>& catalog()
          },
          [](const FitContext& c, Site) {
              // Every output delayed alike and, with several outputs, each one alone.
-             EffectSetup s{Effect::output_delay, Site::force_input, {}, {}, true};
+             EffectSetup s{Effect::output_delay, Site::force_input, 0, {}, {}, true};
              const size_t ny = c.Sy.size();
              const long dmax = delay_grid_max(c);
              for (size_t i = 0; i < ny; ++i) s.spec.push_back({c.Ts, 0, double(dmax + 1), false});
@@ -98,7 +98,7 @@ const std::vector<EffectDescriptor>& catalog()
              return std::vector<ParamInfo>{{"Fc", u.u}, {"offset", u.u}};
          },
          [](const FitContext& c, Site) {
-             return EffectSetup{Effect::coulomb_friction, Site::force_input,
+             return EffectSetup{Effect::coulomb_friction, Site::force_input, 0,
                                 {{c.Su, 0, kBig, false}, {c.Su, -kBig, kBig, false}}, {{0.05, 0.0}, {0.3, 0.0}}, false};
          },
          [](const std::vector<double>& p, Site, const ReplaySetup&, ReplayTerms& t) {
@@ -111,7 +111,7 @@ const std::vector<EffectDescriptor>& catalog()
              return std::vector<ParamInfo>{{"Fv", u.u + "/(" + u.v + ")"}};
          },
          [](const FitContext& c, Site) {
-             return EffectSetup{Effect::viscous_friction, Site::force_input, {{c.Su / c.Sv, -kBig, kBig, false}}, {{0.1}}, false};
+             return EffectSetup{Effect::viscous_friction, Site::force_input, 0, {{c.Su / c.Sv, -kBig, kBig, false}}, {{0.1}}, false};
          },
          [](const std::vector<double>& p, Site, const ReplaySetup&, ReplayTerms& t) { t.Fv = p[0]; }},
         {Effect::stribeck_friction, "stribeck_friction", "F = (Fc + (Fs - Fc) exp(-(v/vs)^2)) sgn(v)", true,
@@ -120,7 +120,7 @@ const std::vector<EffectDescriptor>& catalog()
              return std::vector<ParamInfo>{{"Fc", u.u}, {"Fs", u.u}, {"vs", u.v}};
          },
          [](const FitContext& c, Site) {
-             return EffectSetup{Effect::stribeck_friction, Site::force_input,
+             return EffectSetup{Effect::stribeck_friction, Site::force_input, 0,
                                 {{c.Su, 0, kBig, false}, {c.Su, 0, kBig, false}, {c.Sv, 1e-3, 1e2, false}},
                                 {{0.05, 0.15, 0.1}, {0.2, 0.4, 0.3}}, false};
          },
@@ -131,13 +131,15 @@ const std::vector<EffectDescriptor>& catalog()
              t.Ss = std::max(p[1], p[0]);
              t.Svs = std::max(std::fabs(p[2]), 1e-12);
          }},
-        {Effect::backlash, "backlash", "a play of total width w on the force input, or in the coupling's deflection", false,
+        {Effect::backlash, "backlash",
+         "a play of total width w on the force input, or in the deflection of a declared coupling (e.g. a gear between a "
+         "motor-side encoder and the load)", false,
          {Site::force_input, Site::coupling}, "small reversing moves around a standstill, load side measured",
          [](const std::vector<std::string>&, const Units& u, Site site) {
              return std::vector<ParamInfo>{{"width", site == Site::coupling ? u.q : u.u}};
          },
          [](const FitContext& c, Site site) {
-             EffectSetup s{Effect::backlash, site, {}, {}, false};
+             EffectSetup s{Effect::backlash, site, c.coupling, {}, {}, false};
              if (site == Site::coupling) {
                  // Log grid of w / rms(q) from 1/4 to 64, 4 per octave (the contacts
                  // make the cost rough in w), screened, the best 3 refined.
@@ -151,25 +153,45 @@ const std::vector<EffectDescriptor>& catalog()
              return s;
          },
          [](const std::vector<double>& p, Site site, const ReplaySetup&, ReplayTerms& t) {
-             (site == Site::coupling ? t.cbl : t.bl) = std::fabs(p[0]);
+             if (site == Site::coupling) {
+                 t.bl_coupling = t.coupling;
+                 t.cbl = std::fabs(p[0]);
+             } else {
+                 t.bl = std::fabs(p[0]);
+             }
          }},
-        {Effect::deadzone, "deadzone", "u - sgn(u) h where |u| > h, else 0", false, {Site::force_input},
-         "a slow command ramp through zero",
-         [](const std::vector<std::string>&, const Units& u, Site) { return std::vector<ParamInfo>{{"half_width", u.u}}; },
-         [](const FitContext& c, Site) {
-             return EffectSetup{Effect::deadzone, Site::force_input, {{c.Su, 0, kBig, false}}, {{0.02}, {0.1}, {0.4}}, false};
+        {Effect::deadzone, "deadzone", "0 for lower <= u <= upper, else u - upper above, u - lower below (asymmetric)",
+         false, {Site::force_input}, "a slow command ramp through zero",
+         [](const std::vector<std::string>&, const Units& u, Site) {
+             return std::vector<ParamInfo>{{"lower", u.u}, {"upper", u.u}};
          },
-         [](const std::vector<double>& p, Site, const ReplaySetup&, ReplayTerms& t) { t.dz = std::fabs(p[0]); }},
-        {Effect::saturation, "saturation", "clamp(u, -L, L)", false, {Site::force_input}, "commands up to and beyond the limit",
-         [](const std::vector<std::string>&, const Units& u, Site) { return std::vector<ParamInfo>{{"limit", u.u}}; },
          [](const FitContext& c, Site) {
-             return EffectSetup{Effect::saturation, Site::force_input, {{c.umax, 0.02, 2.0, false}}, {{0.5}, {0.8}, {0.95}}, false};
+             // Edges signed (lower <= 0 <= upper), started symmetric.
+             return EffectSetup{Effect::deadzone, Site::force_input, 0, {{c.Su, -kBig, 0, false}, {c.Su, 0, kBig, false}},
+                                {{-0.02, 0.02}, {-0.1, 0.1}, {-0.4, 0.4}}, false};
          },
          [](const std::vector<double>& p, Site, const ReplaySetup&, ReplayTerms& t) {
-             t.sat = std::max(std::fabs(p[0]), 1e-12);
+             t.dz_lo = std::min(p[0], 0.0);
+             t.dz_hi = std::max(p[1], 0.0);
+         }},
+        {Effect::saturation, "saturation", "clamp(u, lower, upper) (asymmetric)", false, {Site::force_input},
+         "commands up to and beyond the limit, in both directions",
+         [](const std::vector<std::string>&, const Units& u, Site) {
+             return std::vector<ParamInfo>{{"lower", u.u}, {"upper", u.u}};
+         },
+         [](const FitContext& c, Site) {
+             // Limits signed (lower < 0 < upper), each within 2 % .. 200 % of max |u|; started symmetric.
+             return EffectSetup{Effect::saturation, Site::force_input, 0,
+                                {{c.umax, -2.0, -0.02, false}, {c.umax, 0.02, 2.0, false}},
+                                {{-0.5, 0.5}, {-0.8, 0.8}, {-0.95, 0.95}}, false};
+         },
+         [](const std::vector<double>& p, Site, const ReplaySetup&, ReplayTerms& t) {
+             t.sat_lo = std::min(p[0], -1e-12);
+             t.sat_hi = std::max(p[1], 1e-12);
          }},
         {Effect::fractional_damping, "fractional_damping",
-         "c D^alpha v to ground (Grunwald-Letnikov of order alpha - 1 on v), or c D^alpha q in parallel with the coupling's spring",
+         "c D^alpha v to ground (Grunwald-Letnikov of order alpha - 1 on v), or c D^alpha q in parallel with a declared "
+         "coupling's spring or flexible mode (Kelvin-Voigt)",
          true, {Site::force_input, Site::coupling}, "a frequency sweep through the flexible mode (its damping and phase)",
          [](const std::vector<std::string>&, const Units& u, Site site) {
              return std::vector<ParamInfo>{
@@ -177,12 +199,20 @@ const std::vector<EffectDescriptor>& catalog()
                  {"alpha", "1"}};
          },
          [](const FitContext& c, Site site) {
-             EffectSetup s{Effect::fractional_damping, site, {}, {}, false};
+             EffectSetup s{Effect::fractional_damping, site, c.coupling, {}, {}, false};
              if (site == Site::coupling) {
-                 // c normalized by k Ts^0.5; alpha 0.3, 0.5, 0.7 at two levels of c, screened.
-                 s.spec = {{c.kq * std::sqrt(c.Ts), 0, kBig, false}, {1.0, 0.05, 0.95, false}};
-                 for (double a : {0.3, 0.5, 0.7})
-                     for (double g : {0.03, 0.3}) s.starts.push_back({g, a});
+                 // Start rule from the block's slowest mode w0: c D^alpha adds,
+                 // at w0, the damping ratio zeta = c w0^alpha sin(pi alpha/2) / (2 k)
+                 // (and the stiffness c w0^alpha cos(pi alpha/2)); the starts
+                 // are zeta = 0.003, 0.02, 0.1 at alpha = 0.25, 0.5, 0.75,
+                 // screened. c is scaled by k / w0^0.5, its size at alpha = 0.5.
+                 // Without an oscillating block, w0 = 1/Ts.
+                 const double w0 = c.wq > 0 ? c.wq : 1.0 / c.Ts;
+                 const double sc = c.kq / std::sqrt(w0);
+                 s.spec = {{sc, 0, kBig, false}, {1.0, 0.05, 0.95, false}};
+                 for (double a : {0.25, 0.5, 0.75})
+                     for (double z : {0.003, 0.02, 0.1})
+                         s.starts.push_back({2 * c.kq * z / (std::pow(w0, a) * std::sin(M_PI * a / 2)) / sc, a});
                  s.screen = true;
              } else {
                  s.spec = {{c.Su / c.Sv, -kBig, kBig, false}, {1.0, 0.05, 0.95, false}};
@@ -192,7 +222,7 @@ const std::vector<EffectDescriptor>& catalog()
          },
          [](const std::vector<double>& p, Site site, const ReplaySetup&, ReplayTerms& t) {
              if (site == Site::coupling) {
-                 t.cfrac = true;
+                 t.frac_coupling = t.coupling;
                  t.cfc = p[0];
                  t.calpha = p[1];
              } else {
@@ -202,27 +232,34 @@ const std::vector<EffectDescriptor>& catalog()
              }
          }},
         {Effect::unmodelled_mode, "unmodelled_mode",
-         "eta'' + 2 zeta w eta' + w^2 eta = w^2 u; outputs see g_c eta'/w (a resonance without static gain)", false,
-         {Site::force_input}, "a frequency sweep over the band where the residual peaks",
-         [](const std::vector<std::string>& o, const Units& u, Site) {
+         "eta'' + 2 zeta w eta' + w^2 eta = w^2 u; in series at the force input (the plant is driven by eta, unit static "
+         "gain) or at the outputs (they see g_c eta'/w, a resonance without static gain)", false,
+         {Site::output, Site::force_input},
+         "a frequency sweep over the band where the residual peaks, with a sensor at the actuator and one at the load",
+         [](const std::vector<std::string>& o, const Units& u, Site site) {
              std::vector<ParamInfo> v = {{"f_hz", "Hz"}, {"zeta", "1"}};
+             if (site == Site::force_input) return v;
              std::vector<std::string> gu;
              for (size_t i = 0; i < o.size(); ++i) gu.push_back((i < u.y.size() ? u.y[i] : "[" + o[i] + "]") + "/(" + u.u + ")");
              for (const ParamInfo& g : per_output("gain_", o, gu)) v.push_back(g);
              return v;
          },
-         [](const FitContext& c, Site) {
-             EffectSetup s{Effect::unmodelled_mode, Site::force_input, {}, {}, true};
-             const size_t ny = c.Sy.size();
+         [](const FitContext& c, Site site) {
+             EffectSetup s{Effect::unmodelled_mode, site, 0, {}, {}, true};
+             const size_t ny = site == Site::output ? c.Sy.size() : 0;
              const double flo = std::max(2.0 / c.fit_seconds, 1e-3), fhi = 0.25 / c.Ts;
              // zeta <= 0.5: a resonant mode, not an extra first-order lag.
              s.spec = {{1.0, flo, fhi, false}, {1.0, 0.005, 0.5, false}};
              for (size_t i = 0; i < ny; ++i) s.spec.push_back({c.Sy[i] / c.Su, -kBig, kBig, false});
              // Starts: the largest peaks of the nominal residual spectrum and a
-             // log grid of 6 per decade over the band, screened by cost; gains
-             // start at 0.1 std(y)/rms(u) (with 0 the screen could not rank them).
+             // log grid over the band, screened by cost; gains start at 0.1
+             // std(y)/rms(u) (with 0 the screen could not rank them). At the
+             // outputs 6 per decade; in series 24 per decade: a series mode
+             // moves the loop's own dynamics, so one started 20 % off its
+             // frequency costs more than none and the screen drops it.
              std::vector<double> fs = c.residual_peaks_hz;
-             for (double f = flo; f <= fhi; f *= std::pow(10.0, 1.0 / 6.0)) fs.push_back(f);
+             const double per_decade = site == Site::force_input ? 24.0 : 6.0;
+             for (double f = flo; f <= fhi; f *= std::pow(10.0, 1.0 / per_decade)) fs.push_back(f);
              for (double f : fs) {
                  if (f < flo || f > fhi) continue;
                  std::vector<double> st = {f, 0.05};
@@ -231,23 +268,27 @@ const std::vector<EffectDescriptor>& catalog()
              }
              return s;
          },
-         [](const std::vector<double>& p, Site, const ReplaySetup& s, ReplayTerms& t) {
-             t.mode = true;
+         [](const std::vector<double>& p, Site site, const ReplaySetup& s, ReplayTerms& t) {
              t.f_hz = p[0];
              t.zeta = p[1];
-             per_model_output(p, replay_compared(s), 2, t.mode_gain, false);
+             if (site == Site::force_input) {
+                 t.series_mode = true;
+             } else {
+                 t.mode = true;
+                 per_model_output(p, replay_compared(s), 2, t.mode_gain, false);
+             }
          }},
         {Effect::gain_error, "gain_error", "g u", false, {Site::force_input}, "a slow ramp of the command at steady speed",
          [](const std::vector<std::string>&, const Units&, Site) { return std::vector<ParamInfo>{{"gain", "1"}}; },
          [](const FitContext&, Site) {
-             return EffectSetup{Effect::gain_error, Site::force_input, {{1.0, 0.05, 20.0, false}}, {{1.0}, {0.7}, {1.4}}, false};
+             return EffectSetup{Effect::gain_error, Site::force_input, 0, {{1.0, 0.05, 20.0, false}}, {{1.0}, {0.7}, {1.4}}, false};
          },
          [](const std::vector<double>& p, Site, const ReplaySetup&, ReplayTerms& t) { t.gain = p[0]; }},
         {Effect::sensor_offset, "sensor_offset", "y_c + o_c", false, {Site::force_input},
          "a record that starts at rest (gap.initial_state at_rest)",
          [](const std::vector<std::string>& o, const Units& u, Site) { return per_output("offset_", o, u.y); },
          [](const FitContext& c, Site) {
-             EffectSetup s{Effect::sensor_offset, Site::force_input, {}, {}, false};
+             EffectSetup s{Effect::sensor_offset, Site::force_input, 0, {}, {}, false};
              for (double sy : c.Sy) s.spec.push_back({sy, -kBig, kBig, false});
              s.starts = {std::vector<double>(c.Sy.size(), 0.0)};
              return s;
@@ -261,7 +302,7 @@ const std::vector<EffectDescriptor>& catalog()
          [](const FitContext& c, Site) {
              // The lattice step of each output's data where it is coarser than
              // the noise (0: not quantized); no start when none is.
-             EffectSetup s{Effect::quantization, Site::force_input, {}, {}, false};
+             EffectSetup s{Effect::quantization, Site::force_input, 0, {}, {}, false};
              bool any = false;
              std::vector<double> one;
              for (size_t i = 0; i < c.Sy.size(); ++i) {
@@ -317,11 +358,47 @@ bool coupling_capable(Effect e)
     return std::find(s.begin(), s.end(), Site::coupling) != s.end();
 }
 
-std::vector<std::string> param_names(Effect e, const std::vector<std::string>& outputs)
+std::vector<std::string> param_names(Effect e, const std::vector<std::string>& outputs, Site site)
 {
     std::vector<std::string> v;
-    for (const ParamInfo& p : descriptor(e).params(outputs, Units(), Site::force_input)) v.push_back(p.name);
+    for (const ParamInfo& p : descriptor(e).params(outputs, Units(), site)) v.push_back(p.name);
     return v;
+}
+
+std::string site_name(Site s)
+{
+    switch (s) {
+    case Site::force_input: return "force_input";
+    case Site::coupling: return "coupling";
+    case Site::output: return "output";
+    }
+    return "force_input";
+}
+
+std::string site_phrase(const std::string& effect, const std::string& site, const std::string& coupling)
+{
+    if (site == "coupling") return " (in the coupling '" + coupling + "')";
+    if (site == "output") return " (at the outputs)";
+    if (site == "force_input" && effect == "unmodelled_mode") return " (in series at the force input)";
+    return "";
+}
+
+std::vector<std::pair<Site, int>> effect_sites(Effect e, const NominalModel& m)
+{
+    std::vector<std::pair<Site, int>> v;
+    for (Site s : descriptor(e).sites) {
+        if (s != Site::coupling) v.push_back({s, 0});
+        else
+            for (size_t i = 0; i < m.couplings.size(); ++i) v.push_back({s, int(i)});
+    }
+    return v;
+}
+
+Units units_at(const Units& u, int coupling)
+{
+    Units r = u;
+    if (coupling >= 0 && size_t(coupling) < u.qs.size()) r.q = u.qs[size_t(coupling)];
+    return r;
 }
 
 Units model_units(const NominalModel& m, const std::vector<std::string>& outputs)
@@ -333,7 +410,8 @@ Units model_units(const NominalModel& m, const std::vector<std::string>& outputs
     Units u;
     u.u = unit_of(m.inputs[size_t(m.force_input)]);
     if (m.velocity >= 0) u.v = unit_of(m.outputs[size_t(m.velocity)]);
-    if (m.has_coupling) u.q = m.coupling.unit.empty() ? "[" + m.coupling.name + " deflection]" : m.coupling.unit;
+    for (const Coupling& c : m.couplings) u.qs.push_back(c.unit.empty() ? "[" + c.name + " deflection]" : c.unit);
+    if (!u.qs.empty()) u.q = u.qs[0];
     for (const std::string& o : outputs) u.y.push_back(unit_of(o));
     return u;
 }

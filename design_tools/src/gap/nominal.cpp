@@ -78,59 +78,6 @@ std::vector<std::string> names(const json& j, const std::string& key, const std:
     return v;
 }
 
-// The sub-step matrices of gap.coupling (nominal.hpp, Coupling).
-void setup_coupling_substeps(Coupling& c, const Eigen::MatrixXd& A, double Ts, const json& cp, const std::string& w)
-{
-    const Eigen::Index n = A.rows();
-    if (cp.contains("states")) {
-        if (!cp.at("states").is_array() || cp.at("states").empty())
-            throw std::runtime_error(w + ": 'states' must list plant state indices");
-        for (const json& e : cp.at("states")) {
-            if (!e.is_number_integer() || e.get<long>() < 0 || e.get<long>() >= long(n))
-                throw std::runtime_error(w + ": 'states' entries must be integers in [0, " + std::to_string(n - 1) + "]");
-            c.states.push_back(e.get<int>());
-        }
-    } else {
-        for (Eigen::Index i = 0; i < n; ++i) c.states.push_back(int(i));
-    }
-    c.substeps = cp.value("substeps", 8);
-    if (c.substeps < 1 || c.substeps > 256) throw std::runtime_error(w + ": 'substeps' must be in [1, 256]");
-    const Eigen::Index ns = Eigen::Index(c.states.size());
-    std::vector<bool> in(size_t(n), false);
-    for (int i : c.states) {
-        if (in[size_t(i)]) throw std::runtime_error(w + ": 'states' lists state " + std::to_string(i) + " twice");
-        in[size_t(i)] = true;
-    }
-    for (Eigen::Index i = 0; i < n; ++i)
-        if (!in[size_t(i)] && (c.twist(i) != 0.0 || c.torque(i) != 0.0))
-            throw std::runtime_error(w + ": 'twist' and 'torque' must vanish outside 'states' (state " + std::to_string(i) + ")");
-    c.Phi.resize(ns, ns);
-    c.twist_s.resize(ns);
-    Eigen::VectorXd ts(ns);
-    for (Eigen::Index i = 0; i < ns; ++i) {
-        c.twist_s(i) = c.twist(c.states[size_t(i)]);
-        ts(i) = c.torque(c.states[size_t(i)]);
-        for (Eigen::Index j = 0; j < ns; ++j) c.Phi(i, j) = A(c.states[size_t(i)], c.states[size_t(j)]);
-    }
-    // The generator Ac = log(Phi)/Ts. zoh(Ac, I, tau) gives e^{Ac tau} and
-    // int_0^tau e^{Ac s} ds together: at Ts they must give Phi back (else Phi
-    // has no real logarithm) and the hold integral to invert; at Ts/m the
-    // sub-step.
-    const Eigen::MatrixXd Ac = Eigen::MatrixXd(c.Phi.log()) / Ts;
-    const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(ns, ns);
-    Eigen::MatrixXd Phi_ts, G;
-    if (Ac.allFinite()) zoh(Ac, I, Ts, Phi_ts, G);
-    const double err = Ac.allFinite() ? (Phi_ts - c.Phi).cwiseAbs().maxCoeff() : HUGE_VAL;
-    if (!(err <= 1e-8 * std::max(1.0, c.Phi.cwiseAbs().maxCoeff())))
-        throw std::runtime_error(w + ": the block of 'states' has no real matrix logarithm (a pure delay or a mode at or "
-                                 "above Nyquist in it); list the plant's physical states in 'states'");
-    Eigen::FullPivLU<Eigen::MatrixXd> lu(G);
-    if (!lu.isInvertible()) throw std::runtime_error(w + ": the block of 'states' gives a singular hold integral");
-    c.Gamma_inv = lu.inverse();
-    zoh(Ac, I, Ts / c.substeps, c.Phi_m, c.Gamma_m);
-    c.torque_m = c.Gamma_m * (c.Gamma_inv * ts);
-}
-
 }  // namespace
 
 void read_statespace(const json& j, Eigen::Index m, Eigen::Index p, double Ts, const std::string& where,
@@ -207,47 +154,8 @@ NominalModel nominal_from_json(const json& doc, double Ts, const std::string& ba
             m.units[it.key()] = it.value().get<std::string>();
         }
     }
-    if (g.contains("coupling")) {
-        // gap.coupling (docs/gap.md): twist row and torque column over the
-        // plant states; a continuous plant's column is discretised with it.
-        const json& cp = g.at("coupling");
-        const std::string w = "model gap.coupling";
-        if (!cp.is_object()) throw std::runtime_error(w + ": must be an object");
-        const Eigen::Index n = m.A.rows();
-        auto vec = [&](const char* key) {
-            if (!cp.contains(key) || !cp.at(key).is_array() || Eigen::Index(cp.at(key).size()) != n)
-                throw std::runtime_error(w + ": '" + key + "' must list " + std::to_string(n) + " numbers (one per plant state)");
-            Eigen::VectorXd v(n);
-            for (Eigen::Index i = 0; i < n; ++i) {
-                const json& e = cp.at(key)[size_t(i)];
-                if (!e.is_number()) throw std::runtime_error(w + ": '" + key + "' has a non-numeric entry");
-                v(i) = e.get<double>();
-            }
-            if (!v.allFinite()) throw std::runtime_error(w + ": '" + key + "' has a non-finite entry");
-            if (v.cwiseAbs().maxCoeff() == 0.0) throw std::runtime_error(w + ": '" + key + "' is all zero");
-            return v;
-        };
-        m.coupling.name = cp.value("name", std::string("coupling"));
-        if (cp.contains("unit")) {
-            if (!cp.at("unit").is_string()) throw std::runtime_error(w + ": 'unit' must be a string");
-            m.coupling.unit = cp.at("unit").get<std::string>();
-        }
-        m.coupling.twist = vec("twist").transpose();
-        Eigen::VectorXd t = vec("torque");
-        if (ss.continuous()) {
-            Eigen::MatrixXd Ad, Bd;
-            zoh(ss.A, t, Ts, Ad, Bd);
-            t = Bd.col(0);
-        }
-        m.coupling.torque = t;
-        if (!cp.contains("stiffness") || !cp.at("stiffness").is_number())
-            throw std::runtime_error(w + ": missing number 'stiffness'");
-        m.coupling.stiffness = cp.at("stiffness").get<double>();
-        if (!(m.coupling.stiffness > 0) || !std::isfinite(m.coupling.stiffness))
-            throw std::runtime_error(w + ": 'stiffness' must be a finite number > 0");
-        setup_coupling_substeps(m.coupling, m.A, Ts, cp, w);
-        m.has_coupling = true;
-    }
+    // gap.coupling: springs and flexible modes inside the plant (coupling.cpp).
+    if (g.contains("coupling")) m.couplings = read_couplings(g.at("coupling"), m.A, ss.continuous() ? ss.A : Eigen::MatrixXd(), Ts);
     if (g.contains("closed_loop")) {
         const json& cl = g.at("closed_loop");
         const std::string w = "model gap.closed_loop";

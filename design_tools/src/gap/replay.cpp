@@ -149,15 +149,20 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     T.mode_gain.assign(size_t(ny), 0.0);
     T.offset.assign(size_t(ny), 0.0);
     T.step.assign(size_t(ny), 0.0);
-    for (const EffectInstance& e : effects) descriptor(e.kind).apply(e.params, e.site, s, T);
+    for (const EffectInstance& e : effects) {
+        T.coupling = e.coupling;
+        descriptor(e.kind).apply(e.params, e.site, s, T);
+    }
     const double din = m.input_delay + T.din;  // the nominal's delay (gap.input_delay, a foprocess's tau) + the effect's
     const int dout_max = T.dout_max;
     const std::vector<double>& dout = T.dout;
-    const double Fc = T.Fc, Foff = T.Foff, Fv = T.Fv, Sc = T.Sc, Ss = T.Ss, Svs = T.Svs, bl = T.bl, dz = T.dz,
-                 sat = T.sat > 0 ? T.sat : inf, fc = T.fc, alpha = T.alpha, gain = T.gain;
-    const bool stribeck = T.stribeck, fractional = T.fractional, mode = T.mode;
-    const double cbl = T.cbl, cfc = T.cfc, calpha = T.calpha;
-    const bool cfrac = T.cfrac;
+    const double Fc = T.Fc, Foff = T.Foff, Fv = T.Fv, Sc = T.Sc, Ss = T.Ss, Svs = T.Svs, bl = T.bl, fc = T.fc,
+                 alpha = T.alpha, gain = T.gain;
+    // Limits and dead-zone edges, asymmetric (lower < 0 < upper).
+    const bool limited = T.sat_lo < 0 || T.sat_hi > 0, deadzone = T.dz_lo < 0 || T.dz_hi > 0;
+    const double sat_lo = limited ? T.sat_lo : -inf, sat_hi = limited ? T.sat_hi : inf, dz_lo = T.dz_lo, dz_hi = T.dz_hi;
+    const bool stribeck = T.stribeck, fractional = T.fractional, mode = T.mode, series = T.series_mode;
+    const double cfc = T.cfc, calpha = T.calpha;
     const double f_hz = T.f_hz, zeta = T.zeta;
     const std::vector<double>&mode_gain = T.mode_gain, &offset = T.offset, &step = T.step;
 
@@ -179,6 +184,29 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     Eigen::Matrix2d Am = Eigen::Matrix2d::Identity();
     Eigen::Vector2d Bm = Eigen::Vector2d::Zero();
     const double mode_w = 2 * M_PI * std::max(f_hz, 1e-6);
+    // The mode in series at the force input: the plant is driven by eta
+    // (unit static gain) instead of the actuator's a. Over a sample the
+    // plant sees eta's mean, (1/Ts) int eta = Cs xm + Ds a, from the zero-
+    // order hold of [xm; int eta] (xm = [eta, eta'], a held), so that the
+    // series mode adds no half-sample lag of its own.
+    Eigen::Matrix2d As = Eigen::Matrix2d::Identity();
+    Eigen::Vector2d Bs = Eigen::Vector2d::Zero(), Cs = Eigen::Vector2d::Zero();
+    double Ds = 1.0;
+    if (series) {
+        const double w = mode_w;
+        Eigen::MatrixXd Ac = Eigen::MatrixXd::Zero(3, 3), Bc = Eigen::MatrixXd::Zero(3, 1), Ad, Bd;
+        Ac(0, 1) = 1;
+        Ac(1, 0) = -w * w;
+        Ac(1, 1) = -2 * zeta * w;
+        Ac(2, 0) = 1;
+        Bc(1, 0) = w * w;
+        zoh(Ac, Bc, Ts, Ad, Bd);
+        As = Ad.topLeftCorner(2, 2);
+        Bs = Bd.col(0).head(2);
+        Cs = Ad.row(2).head(2).transpose() / Ts;
+        Ds = Bd(2, 0) / Ts;
+    }
+    double xs_m[2] = {0, 0};
     if (mode) {
         const double w = mode_w;
         Eigen::MatrixXd Ac(2, 2), Bc(2, 1), Ad, Bd;
@@ -194,23 +222,36 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     std::vector<frac_real> gl_store;
     frac_gl gl_v;
     if (fractional) gl_init_or_throw(gl_v, alpha - 1.0, Ts, s.fractional_memory, gl_store);
-    // Coupling (gap.coupling): the real spring's torque minus the nominal's,
+    // Couplings (gap.coupling): in coupling i the real spring's torque minus the nominal's,
     //   D = -k clamp(q, -w/2, w/2)        (play of width w: k dz(q) - k q)
     //     + c D^alpha q                   (Grunwald-Letnikov of order alpha on q).
-    // The fractional term is evaluated at mid-sample, q = (q(k) + q(k+1))/2
-    // with the nominal q(k+1), and held over the sample. The play is applied
-    // on sub-steps of the coupling's state block (nominal.hpp, Coupling),
-    // each an implicit trapezoid D(q at mid-sub-step) solved by fixed-point
-    // iteration (contraction |twist . torque_m| k/2). One explicit step per
-    // 1.2 ms sample misses the gap-bench gear's contacts completely (its
-    // free play gets a spurious eigenvalue of 0.944 per step); one implicit
-    // step leaves 40 % of the effect as error, 8 sub-steps 3 % (driven by the
-    // recorded torque, against RK4 with 32 sub-steps per sample).
-    const bool coupled = m.has_coupling;
-    const Coupling* cp = coupled ? &m.coupling : nullptr;
-    const double ck = coupled ? cp->stiffness : 0.0;
-    const double ctb = coupled ? cp->twist_s.dot(cp->torque_m) : 0.0;
-    const Eigen::Index ns = coupled ? Eigen::Index(cp->states.size()) : 0;
+    // At most one coupling holds the play and one the fractional term (each
+    // effect kind appears once). The fractional term is held over the
+    // sample at its value at mid-sample: the Grunwald-Letnikov sum of step h
+    // is centred alpha h/2 behind its newest sample (the shifted Grunwald
+    // formula, D^alpha q(t) = h^-alpha sum_j w_j q(t - (j - alpha/2) h) to
+    // second order, Meerschaert & Tadjeran 2004), so it is fed
+    // q(k + (1 + alpha)/2), interpolated between q(k) and the nominal
+    // q(k+1) (pushed with the end state once known). Fed the plain midpoint,
+    // it lags alpha/2 samples: at 0.165 rad per sample that biased c by 10 %
+    // (test_gap_sites_kv). Its memory covers 20/w of the block's slowest mode
+    // (coupling_gl_memory). The play is applied on sub-steps of its
+    // coupling's state block (nominal.hpp, Coupling), each an implicit
+    // trapezoid D(q at mid-sub-step) solved by fixed-point iteration
+    // (contraction |twist . torque_m| k/2). One explicit step per 1.2 ms
+    // sample misses the gap-bench gear's contacts completely (its free play
+    // gets a spurious eigenvalue of 0.944 per step); one implicit step leaves
+    // 40 % of the effect as error, 8 sub-steps 3 % (driven by the recorded
+    // torque, against RK4 with 32 sub-steps per sample).
+    const int ncp = int(m.couplings.size());
+    const int ibl = T.cbl >= 0 && T.bl_coupling >= 0 && T.bl_coupling < ncp ? T.bl_coupling : -1;
+    const int ifr = T.frac_coupling >= 0 && T.frac_coupling < ncp ? T.frac_coupling : -1;
+    const double cbl = T.cbl;
+    const Coupling* cb = ibl >= 0 ? &m.couplings[size_t(ibl)] : nullptr;
+    const Coupling* cf = ifr >= 0 ? &m.couplings[size_t(ifr)] : nullptr;
+    const double ck = cb ? cb->stiffness : 0.0;
+    const double ctb = cb ? cb->twist_s.dot(cb->torque_m) : 0.0;
+    const Eigen::Index ns = cb ? Eigen::Index(cb->states.size()) : 0;
     Eigen::VectorXd zs(ns), zp(ns), gs(ns), drive(ns);
     // c D^alpha q: libfrac's Grunwald-Letnikov operator of order alpha on the
     // mid-sample deflections; the sample's term is g qmid + y0 with the
@@ -218,17 +259,19 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     // pushed once the sample's end state is known.
     std::vector<frac_real> cgl_store;
     frac_gl gl_q;
-    if (cfrac) gl_init_or_throw(gl_q, calpha, Ts, s.fractional_memory, cgl_store);
-    // Deflection twist . x of a plant state.
-    auto twist_of = [&](const std::vector<double>& xs) {
+    const double fshift = 0.5 * (1.0 + calpha);
+    if (cf) gl_init_or_throw(gl_q, calpha, Ts, coupling_gl_memory(*cf, Ts, s.fractional_memory, long(N)), cgl_store);
+    // Deflection twist . x of a plant state in coupling c.
+    auto twist_of = [&](const Coupling& c, const std::vector<double>& xs) {
         double q = 0;
-        for (int j = 0; j < nx; ++j) q += cp->twist(j) * xs[size_t(j)];
+        for (int j = 0; j < nx; ++j) q += c.twist(j) * xs[size_t(j)];
         return q;
     };
 
     ReplayTrace tr;
     tr.y.resize(N, ncmp);
     tr.twist = Eigen::VectorXd::Zero(N);
+    tr.twists = Eigen::MatrixXd::Zero(N, ncp);
     tr.u.resize(N);
     tr.v.resize(N);
     std::vector<double> x(s.x0.data(), s.x0.data() + nx), xn(static_cast<size_t>(nx));
@@ -239,7 +282,8 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     std::vector<double> rk(m.closed_loop ? m.loop.references.size() : 0), ym(m.closed_loop ? m.loop.measured.size() : 0),
         cvec(static_cast<size_t>(nu));
     double eta[2] = {0, 0};
-    double bl_out = 0.0;
+    double bl_out = 0.0, series_in = 0.0;
+    bool first_sample = true;
     History h_out, h_in, h_ctl;
     const int nr = m.closed_loop ? int(m.loop.references.size()) : 0;
 
@@ -269,11 +313,16 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
         const double fr = din - n;
         for (int j = 0; j < nu; ++j) up[size_t(j)] = (1 - fr) * h_in.lagged(n + 1)[j] + (fr > 0 ? fr * h_in.lagged(n + 2)[j] : 0.0);
         double a = gain * up[size_t(fi)];
-        a = std::min(std::max(a, -sat), sat);
-        if (dz > 0) a = std::fabs(a) <= dz ? 0.0 : a - std::copysign(dz, a);
+        a = std::min(std::max(a, sat_lo), sat_hi);
+        if (deadzone) a = a > dz_hi ? a - dz_hi : (a < dz_lo ? a - dz_lo : 0.0);
         if (bl >= 0) {
             bl_out = std::min(std::max(bl_out, a - 0.5 * bl), a + 0.5 * bl);
             a = bl_out;
+        }
+        if (series) {
+            if (first_sample) xs_m[0] = a, xs_m[1] = 0.0;  // the mode starts at rest under the first input
+            series_in = a;
+            a = Cs(0) * xs_m[0] + Cs(1) * xs_m[1] + Ds * a;
         }
         up[size_t(fi)] = a;
         double f = 0.0;
@@ -350,49 +399,58 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
             for (int j = 0; j < nu; ++j) acc += m.B(i, j) * up[size_t(j)];
             xn[size_t(i)] = acc;
         }
-        if (coupled) {
-            const double q0 = twist_of(x);
-            tr.twist(k) = q0;
-            double Dfr = 0.0;
-            if (cfrac) {
-                const double qp = twist_of(xn);  // the nominal q(k+1)
-                frac_real y0 = 0;
-                frac_gl_free_response(&gl_q, &y0);
-                Dfr = cfc * (double(frac_gl_feedthrough(&gl_q)) * 0.5 * (q0 + qp) + double(y0));
+        for (int c = 0; c < ncp; ++c) {
+            tr.twists(k, c) = twist_of(m.couplings[size_t(c)], x);
+            if (c == 0) tr.twist(k) = tr.twists(k, c);
+        }
+        double q0f = 0.0;
+        if (cf) {
+            // The fractional torque held over the sample, added to the
+            // sample's forcing (a play's sub-steps below take their forcing
+            // from xn, so they carry it).
+            q0f = twist_of(*cf, x);
+            const double qp = twist_of(*cf, xn);  // the nominal q(k+1)
+            frac_real y0 = 0;
+            frac_gl_free_response(&gl_q, &y0);
+            const double Dfr = cfc * (double(frac_gl_feedthrough(&gl_q)) * (q0f + fshift * (qp - q0f)) + double(y0));
+            for (int i = 0; i < nx; ++i) xn[size_t(i)] += cf->torque(i) * Dfr;
+        }
+        if (cb) {
+            // Sub-steps: z+ = Phi_m z + Gamma_m g + torque_m D, g the sample's forcing.
+            for (Eigen::Index i = 0; i < ns; ++i) {
+                const size_t si = size_t(cb->states[size_t(i)]);
+                zs(i) = x[si];
+                zp(i) = xn[si];
             }
-            if (cbl >= 0) {
-                // Sub-steps: z+ = Phi_m z + Gamma_m g + torque_m (Dfr + D), g the sample's forcing.
-                for (Eigen::Index i = 0; i < ns; ++i) {
-                    const size_t si = size_t(cp->states[size_t(i)]);
-                    zs(i) = x[si];
-                    zp(i) = xn[si];
+            zp.noalias() -= cb->Phi * zs;
+            gs.noalias() = cb->Gamma_inv * zp;
+            drive.noalias() = cb->Gamma_m * gs;
+            for (int j = 0; j < cb->substeps; ++j) {
+                zp.noalias() = cb->Phi_m * zs;
+                zp += drive;
+                const double a0 = cb->twist_s.dot(zs), a1 = cb->twist_s.dot(zp);
+                double D = 0;
+                for (int it = 0; it < 3; ++it) {
+                    const double q = 0.5 * (a0 + a1 + ctb * D);
+                    D = -ck * std::min(std::max(q, -0.5 * cbl), 0.5 * cbl);
                 }
-                zp.noalias() -= cp->Phi * zs;
-                gs.noalias() = cp->Gamma_inv * zp;
-                drive.noalias() = cp->Gamma_m * gs;
-                drive += cp->torque_m * Dfr;
-                for (int j = 0; j < cp->substeps; ++j) {
-                    zp.noalias() = cp->Phi_m * zs;
-                    zp += drive;
-                    const double a0 = cp->twist_s.dot(zs), a1 = cp->twist_s.dot(zp);
-                    double D = 0;
-                    for (int it = 0; it < 3; ++it) {
-                        const double q = 0.5 * (a0 + a1 + ctb * D);
-                        D = -ck * std::min(std::max(q, -0.5 * cbl), 0.5 * cbl);
-                    }
-                    zs = zp;
-                    zs += cp->torque_m * D;
-                }
-                for (Eigen::Index i = 0; i < ns; ++i) xn[size_t(cp->states[size_t(i)])] = zs(i);
-            } else if (cfrac) {
-                for (int i = 0; i < nx; ++i) xn[size_t(i)] += cp->torque(i) * Dfr;
+                zs = zp;
+                zs += cb->torque_m * D;
             }
-            if (cfrac) {
-                frac_real dummy = 0;
-                frac_gl_step(&gl_q, frac_real(0.5 * (q0 + twist_of(xn))), &dummy);
-            }
+            for (Eigen::Index i = 0; i < ns; ++i) xn[size_t(cb->states[size_t(i)])] = zs(i);
+        }
+        if (cf) {
+            frac_real dummy = 0;
+            frac_gl_step(&gl_q, frac_real(q0f + fshift * (twist_of(*cf, xn) - q0f)), &dummy);
         }
         x.swap(xn);
+        if (series) {
+            const double e0 = As(0, 0) * xs_m[0] + As(0, 1) * xs_m[1] + Bs(0) * series_in;
+            const double e1 = As(1, 0) * xs_m[0] + As(1, 1) * xs_m[1] + Bs(1) * series_in;
+            xs_m[0] = e0;
+            xs_m[1] = e1;
+        }
+        first_sample = false;
         if (mode) {
             const double e0 = Am(0, 0) * eta[0] + Am(0, 1) * eta[1] + Bm(0) * up[size_t(fi)];
             const double e1 = Am(1, 0) * eta[0] + Am(1, 1) * eta[1] + Bm(1) * up[size_t(fi)];

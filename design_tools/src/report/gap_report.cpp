@@ -183,7 +183,8 @@ std::string gap_report_html(const gap::GapResult& r, const nlohmann::json& j, co
                   (unid ? " (not identified)" : sd.is_null() ? "" : " &plusmn; " + g4(sd.get<double>())) + "; ";
         }
         o << "<tr><td class=l>" << html_escape(c["effect"].get<std::string>())
-          << (c.value("site", std::string()) == "coupling" ? " (in the coupling)" : "") << "</td><td>"
+          << html_escape(gap::site_phrase(c["effect"].get<std::string>(), c.value("site", std::string()), c.value("coupling", std::string())))
+          << "</td><td>"
           << g4(c["shrink"].is_null() ? NAN : c["shrink"].get<double>()) << "</td><td>"
           << g4(c["score"].is_null() ? NAN : c["score"].get<double>()) << "</td><td>"
           << g4(c["gap_after_total"].is_null() ? NAN : c["gap_after_total"].get<double>()) << "</td><td class=l>" << ps

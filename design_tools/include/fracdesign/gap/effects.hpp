@@ -39,14 +39,25 @@ Effect effect_from_name(const std::string& name);  // std::invalid_argument if u
 
 // Where an effect acts. Backlash and fractional damping act at the force
 // input (a play on u, c D^alpha of the velocity output to ground) or, when
-// the model declares one (gap.coupling), in its spring: a play in the
-// deflection, c D^alpha of the deflection in parallel with the spring.
-enum class Site { force_input, coupling };
+// the model declares them (gap.coupling), in one of its springs or flexible
+// modes: a play in the deflection, c D^alpha of the deflection in parallel
+// with the spring (Kelvin-Voigt). The unmodelled mode acts in series at the
+// force input (between the actuator and the plant) or at the outputs (a
+// sensor-side resonance).
+enum class Site { force_input, coupling, output };
 struct EffectInstance {
     Effect kind;
     std::vector<double> params;  // physical values, in the order of param_names()
     Site site = Site::force_input;
+    int coupling = 0;            // Site::coupling: index into NominalModel::couplings
 };
+// The site's name in result.json: "force_input", "output", or "coupling".
+std::string site_name(Site s);
+// How the CLI and the report say where an effect of result.json acts
+// (effect name, site name, coupling name): "" at the force input, else
+// e.g. " (in the coupling 'gear')", " (at the outputs)", " (in series at
+// the force input)" for the mode.
+std::string site_phrase(const std::string& effect, const std::string& site, const std::string& coupling);
 
 // The parameters' units come from the model document's optional gap.units
 // (signal name -> unit); a unit the document does not give is written
@@ -54,7 +65,8 @@ struct EffectInstance {
 struct Units {
     std::string u = "[u]";        // the force input
     std::string v = "[v]";        // the velocity output
-    std::string q = "[q]";        // the coupling's deflection
+    std::string q = "[q]";        // the deflection of the coupling an effect acts in
+    std::vector<std::string> qs;  // each coupling's deflection (model order)
     std::vector<std::string> y;   // each compared output
 };
 struct ParamInfo {
@@ -72,6 +84,7 @@ struct ParamSpec {
 struct EffectSetup {
     Effect kind;
     Site site = Site::force_input;
+    int coupling = 0;                          // Site::coupling: which one
     std::vector<ParamSpec> spec;
     std::vector<std::vector<double>> starts;  // normalized start vectors
     bool screen = false;                      // rank starts by cost, refine the best three
@@ -79,7 +92,10 @@ struct EffectSetup {
 // The data scales that effects' bounds and starts are taken from.
 struct FitContext {
     double Ts = 0, Su = 1, Sv = 1, umax = 1, fit_seconds = 0;
-    double Sq = 0, kq = 0;                  // coupling: rms nominal deflection, stiffness (0: no coupling)
+    // The coupling a set-up is for: rms nominal deflection, stiffness, slowest
+    // oscillation of its block [rad/s] (0: none), index.
+    double Sq = 0, kq = 0, wq = 0;
+    int coupling = 0;
     std::vector<double> Sy;                 // std of each compared output
     std::vector<double> quant_step;         // lattice step of each compared output (0: not quantized)
     std::vector<double> residual_peaks_hz;  // largest peaks of the nominal residual spectrum
@@ -95,13 +111,18 @@ struct ReplayTerms {
     double Fc = 0, Foff = 0, Fv = 0;                          // Coulomb level and offset, viscous rate
     bool stribeck = false;
     double Sc = 0, Ss = 0, Svs = 1;                           // Stribeck Fc, Fs, vs
-    double bl = -1, dz = 0, sat = 0, gain = 1;                // play (< 0: none), dead zone, limit (0: none), gain
+    double bl = -1, gain = 1;                                 // play on the force input (< 0: none), gain
+    double dz_lo = 0, dz_hi = 0;                              // dead zone edges (lower <= 0 <= upper; 0, 0: none)
+    double sat_lo = 0, sat_hi = 0;                            // limits (lower < 0 < upper; 0, 0: none)
     bool fractional = false;
     double fc = 0, alpha = 0.5;                               // c D^alpha of the velocity to ground
-    double cbl = -1;                                          // play in the coupling (< 0: none)
-    bool cfrac = false;
-    double cfc = 0, calpha = 0.5;                             // c D^alpha of the coupling deflection
-    bool mode = false;
+    int coupling = 0;                 // set by replay() before each apply: the instance's coupling
+    int bl_coupling = -1;             // coupling holding the play (-1: none)
+    double cbl = -1;                  // its play (< 0: none)
+    int frac_coupling = -1;           // coupling holding c D^alpha of its deflection (-1: none)
+    double cfc = 0, calpha = 0.5;
+    bool mode = false;                // the mode at the outputs
+    bool series_mode = false;         // the mode in series at the force input
     double f_hz = 1, zeta = 0.1;
     std::vector<double> mode_gain, offset, step;              // per model output
 };
@@ -131,8 +152,12 @@ const EffectDescriptor& descriptor(Effect e);
 bool needs_velocity(Effect e);
 // Effects that can act in a declared coupling (backlash, fractional_damping).
 bool coupling_capable(Effect e);
-// Parameter names of an effect; `outputs` are the compared outputs (per-channel parameters).
-std::vector<std::string> param_names(Effect e, const std::vector<std::string>& outputs);
+// Parameter names of an effect at a site; `outputs` are the compared outputs (per-channel parameters).
+std::vector<std::string> param_names(Effect e, const std::vector<std::string>& outputs, Site site = Site::force_input);
+// The sites the diagnosis tries for an effect on this model (coupling: once per declared coupling).
+std::vector<std::pair<Site, int>> effect_sites(Effect e, const NominalModel& m);
+// `u` with the deflection unit of coupling `coupling`.
+Units units_at(const Units& u, int coupling);
 // Units of the model's signals as the replay's parameters see them.
 Units model_units(const NominalModel& m, const std::vector<std::string>& outputs);
 
@@ -150,7 +175,7 @@ struct ReplaySetup {
     // compares the model with the cell around the reading (docs/gap.md).
     Eigen::MatrixXd measured;
     double eps_velocity = 1.0;         // sign(v) ~ tanh(v/eps) where the force input does not reach v in one step
-    int fractional_memory = 256;       // Grunwald-Letnikov memory, samples
+    int fractional_memory = 256;       // Grunwald-Letnikov memory, samples (a coupling's: coupling_gl_memory)
 
     Eigen::Index samples() const { return exo.rows(); }
 };
@@ -168,7 +193,8 @@ struct ReplayTrace {
     Eigen::MatrixXd y;      // samples x compared outputs, as the sensors would read them
     Eigen::VectorXd u;      // plant force input after input effects and friction
     Eigen::VectorXd v;      // friction velocity (zero when the model names none)
-    Eigen::VectorXd twist;  // coupling deflection twist . x (zero when the model declares no coupling)
+    Eigen::VectorXd twist;  // the first coupling's deflection twist . x (zero when the model declares no coupling)
+    Eigen::MatrixXd twists; // samples x couplings: each coupling's deflection
 };
 
 // Replays the nominal model with the given effects over the first `n`

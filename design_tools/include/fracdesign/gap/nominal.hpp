@@ -57,6 +57,12 @@ struct ClosedLoop {
 // Phi_m = e^{Ac Ts/m}, with the sample's forcing (inputs and the other
 // states, known only through x(k+1) - Phi x(k)) held constant over it.
 // Without correction the sub-steps end exactly at the nominal x(k+1).
+//
+// A coupling is declared either by its spring (twist, torque, stiffness) or,
+// on a continuous modal model, by a flexible mode's coordinates
+// ("modal": {"position": i, "rate": j}, docs/gap.md): twist e_i, torque
+// -e_j (unit modal mass), stiffness -A(j, i) = w^2. gap.coupling is one
+// such object or a list of them (coupling.cpp).
 struct Coupling {
     std::string name;
     std::string unit;          // unit of the deflection (gap.coupling.unit; empty: not given)
@@ -68,7 +74,20 @@ struct Coupling {
     Eigen::MatrixXd Phi, Phi_m, Gamma_m, Gamma_inv;  // A[S,S], e^{Ac Ts/m}, int_0^{Ts/m} e^{Ac s} ds, (int_0^Ts ..)^-1
     Eigen::VectorXd torque_m;  // Gamma_m Gamma^-1 torque[S]: one sub-step of a unit extra spring torque
     Eigen::RowVectorXd twist_s;  // twist[S]
+    double w_slow = 0.0;       // slowest oscillatory eigenfrequency of the block's generator Ac [rad/s] (0: none)
 };
+
+// Reads gap.coupling (an object or a list of objects) of a plant whose
+// continuous matrices are Ac (empty for a discrete plant) into couplings
+// with their sub-step matrices; std::runtime_error naming the entry and
+// field on a malformed one (coupling.cpp).
+std::vector<Coupling> read_couplings(const nlohmann::json& spec, const Eigen::MatrixXd& A, const Eigen::MatrixXd& Ac,
+                                     double Ts);
+// Grunwald-Letnikov memory for c D^alpha of a coupling's deflection: at
+// least `base` samples and 20/(w_slow Ts), so that the truncated operator's
+// error at the block's slowest mode, (L Ts w)^-(1+alpha)/|Gamma(-alpha)|
+// (fo_gl.h), stays below 0.4 % for every alpha in (0, 1); at most `cap`.
+int coupling_gl_memory(const Coupling& c, double Ts, int base, long cap);
 
 struct Mode {
     double f_hz;  // natural frequency
@@ -84,8 +103,7 @@ struct NominalModel {
     ClosedLoop loop;
     int velocity = -1;     // model output used as the friction velocity (-1: none)
     int force_input = 0;   // plant input where friction, dead zone, backlash, gain and saturation act
-    bool has_coupling = false;
-    Coupling coupling;     // gap.coupling, when has_coupling
+    std::vector<Coupling> couplings;  // gap.coupling (none, one or several springs / flexible modes)
     std::map<std::string, std::string> units;  // gap.units: signal name -> unit (optional, for the report)
 
     // What the document states the user knows (docs/gap.md "What the
