@@ -305,14 +305,12 @@ struct Scales {
 
 double rms(const Eigen::VectorXd& v) { return std::sqrt(v.squaredNorm() / double(v.size())); }
 
-// The IMU reading's delay on the rig as an LTI map: a reading every r/2 cycles, sent r/2 cycles after its
-// sample, acts as the latency plus half the hold, r/2 + (r/2 - 1)/2 cycles (as for twomass); the drive
-// ramps the shaft torque from one cycle's torque_actual to the next, half a cycle behind the nominal's ZOH.
-// The IMU delay the diagnosis should find against the nominal's d_o delay states [cycles]:
-double imu_delay_vs_nominal(int reading_cycles, int d_o)
+// The IMU delay the diagnosis should find against the nominal [cycles]: a reading every r/2 cycles, sent
+// r/2 cycles after its sample, is r/2 .. r - 1 cycles old through its hold, mean (3 r/2 - 1)/2; the
+// nominal (arm_gap_nominal) holds that mean for the document's r, so the extra delay is the difference.
+double imu_delay_vs_nominal(int reading_cycles, int nominal_reading_cycles)
 {
-    const double r2 = 0.5 * reading_cycles;
-    return r2 + 0.5 * (r2 - 1) + 0.5 - d_o;
+    return 0.75 * (reading_cycles - nominal_reading_cycles);
 }
 
 TruthEffect draw_effect(const std::string& e, const BenchCase& c, const Scales& s, hil_rng* rng)
@@ -322,10 +320,10 @@ TruthEffect draw_effect(const std::string& e, const BenchCase& c, const Scales& 
     auto key = [&](const std::string& k, double v) { t.rig.push_back({k, format_value(v)}); };
     const double T = c.plant.at("sample_time");
     if (e == "output_delay") {
-        const int d_o = int(c.plant.at("delays.output")), r = 2 * std::max(1, d_o - 1);
+        const int d_o = int(c.plant.at("delays.output")), r = 2 * std::max(1, d_o - 1);  // arm_imu_reading_cycles
         const int r_new = r + 2 * (1 + int(hil_rng_u64(rng) % std::uint64_t((8 - r) / 2)));
         t.rig = {{"imu.reading_cycles", std::to_string(r_new)}};
-        t.params = {{"delay_s_imu_rate", T * imu_delay_vs_nominal(r_new, d_o)}};
+        t.params = {{"delay_s_imu_rate", T * imu_delay_vs_nominal(r_new, r)}};
     } else if (e == "coulomb_friction") {
         const double b0 = uniform(rng, 0.03, 0.12) * s.tau_pk;
         key("plant.fric_b0", b0);

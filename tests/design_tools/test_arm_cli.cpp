@@ -122,7 +122,8 @@ TEST(ArmCli, one_document_gives_plant_table_gap_nominal_scenario_and_feedforward
     const json m = json::parse(out);
     EXPECT_EQ(m["full_states"], 4 + 36 + 2);  // drive, beam N = 9, payload mass (no rotary inertia)
     const json n = json::parse(std::ifstream(d / "n.json"));
-    EXPECT_EQ(n["A"].size(), 42u + 5u);  // + the d_o = 5 IMU delay states
+    // + torque_prev (first-order hold) + the IMU ages 1 .. 2h - 1, h = max(1, d_o - 1) = 4 for d_o = 5
+    EXPECT_EQ(n["A"].size(), 42u + 1u + (2u * 4u - 1u));
     EXPECT_EQ(n["outputs"], json({"motor_velocity", "imu_rate"}));
     out = run_command(kExe + " table check " + (d / "p.bin").string(), &st);
     EXPECT_EQ(st, 0) << out;

@@ -538,6 +538,8 @@ tables::ParamTable arm_plant_table_for(const ArmDocument& a, double h)
     return t;
 }
 
+int arm_imu_reading_cycles(const ArmDocument& a) { return 2 * std::max(1, a.dout - 1); }
+
 nlohmann::json arm_gap_nominal(const ArmDocument& a)
 {
     const ArmBuild b = build_arm_from_document(a, a.design.N, false, {});
@@ -545,30 +547,40 @@ nlohmann::json arm_gap_nominal(const ArmDocument& a)
     m.C = m.C.bottomRows(2).eval();  // theta_M', psi'(z_imu)
     m.D = Eigen::MatrixXd::Zero(2, 1);
     m.outputs = {"motor_velocity", "imu_rate"};
-    const StateSpace d = c2d_zoh(m, a.T);
-    const Eigen::Index n = d.nx(), nd = a.dout, N = n + nd;
-    // IMU delay chain: beta_do[k+1] = y_imu[k], beta_j[k+1] = beta_{j+1}[k], imu_rate = beta_1 (7.14)-(7.15)
+    // The rig's drive ramps the shaft torque over [t_k, t_{k+1}] from torque_actual[k-1] to
+    // torque_actual[k] (hil/drive.c, RIG_TORQUE): first-order hold, exact, with the previous torque as a
+    // state. motor_velocity[k] = theta_M'(t_k) (the drive's TPDO at SYNC k).
+    const FohDiscretisation d = c2d_foh(m, a.T);
+    // The IMU reading (hil/imu.c, r = arm_imu_reading_cycles acquisitions at T/2 between samples, sent r
+    // acquisitions later) is psi'(t_{k-q}) with the age q = h .. 2h - 1 cycles, h = r/2, running through
+    // the hold (measured on the rig: imu_rate[k] equals tip_velocity[k - q] to the gyro's wire step).
+    // Periodically time-varying for h > 1; the LTI map nearest to it for every input is the mean over
+    // the phases, imu_rate[k] = (1/h) sum_{q=h}^{2h-1} psi'(t_{k-q}) (mean age (3h - 1)/2 cycles).
+    const Eigen::Index n = d.Ad.rows(), h = arm_imu_reading_cycles(a) / 2, L = 2 * h - 1, N = n + 1 + L;
     Eigen::MatrixXd A = Eigen::MatrixXd::Zero(N, N), B = Eigen::MatrixXd::Zero(N, 1), C = Eigen::MatrixXd::Zero(2, N);
-    A.topLeftCorner(n, n) = d.A;
-    B.topRows(n) = d.B;
-    C.block(0, 0, 1, n) = d.C.row(0);
-    if (nd > 0) {
-        A.block(n + nd - 1, 0, 1, n) = d.C.row(1);
-        for (Eigen::Index j = 0; j + 1 < nd; ++j) A(n + j, n + j + 1) = 1.0;
-        C(1, n) = 1.0;
-    } else {
-        C.block(1, 0, 1, n) = d.C.row(1);
-    }
+    A.topLeftCorner(n, n) = d.Ad;
+    A.block(0, n, n, 1) = d.B_prev;
+    B.topRows(n) = d.B_now;
+    B(n, 0) = 1.0;  // torque_prev[k+1] = torque_actual[k]
+    // imu_past[q][k] = psi'(t_{k-q}): imu_past[1][k+1] = C_imu x[k], imu_past[q+1][k+1] = imu_past[q][k]
+    A.block(n + 1, 0, 1, n) = m.C.row(1);
+    for (Eigen::Index q = 1; q < L; ++q) A(n + 1 + q, n + q) = 1.0;
+    C.block(0, 0, 1, n) = m.C.row(0);
+    for (Eigen::Index q = h; q <= L; ++q) C(1, n + q) = 1.0 / static_cast<double>(h);
     std::vector<std::string> states = m.states;
-    for (Eigen::Index j = 0; j < nd; ++j) states.push_back("imu_delay[" + std::to_string(j + 1) + "]");
+    states.push_back("torque_prev");
+    for (Eigen::Index q = 1; q <= L; ++q) states.push_back("imu_past[" + std::to_string(q) + "]");
+    const std::string ages = h == 1 ? "1 cycle" : "the mean of psi' " + std::to_string(h) + " .. " + std::to_string(L) + " cycles old";
     return {{"schema", "frac.model"},
             {"version", 1},
             {"kind", "statespace"},
             {"name", "arm_nominal_" + a.name},
             {"description", "gap nominal of the arm document '" + a.name + "' (fracdesign model --arm --gap-nominal): the full arm (N = " +
                                 std::to_string(b.beam.N) + ", " + std::to_string(n) + " states) the controller was designed and checked on, "
-                                "ZOH at T, open loop from the drive's torque_actual to motor_velocity and imu_rate (IMU delayed d_o = " +
-                                std::to_string(nd) + " samples), no friction"},
+                                "open loop from the drive's torque_actual to motor_velocity and imu_rate, first-order hold at T "
+                                "(the drive's torque ramps from the previous torque_actual to this one, state torque_prev), imu_rate " +
+                                ages + " (the rig's IMU reading every " + std::to_string(h) + " cycles, sent " + std::to_string(h) +
+                                " cycles after its sample, as an LTI map), no friction"},
             {"time", "discrete"},
             {"Ts", a.T},
             {"A", mat(A)},

@@ -278,4 +278,25 @@ StateSpace c2d_zoh(const StateSpace& sys, double Ts)
     return d;
 }
 
+FohDiscretisation c2d_foh(const StateSpace& sys, double Ts)
+{
+    if (!sys.continuous()) throw std::invalid_argument("c2d_foh: the model is already discrete");
+    if (!std::isfinite(Ts) || Ts <= 0.0) throw std::invalid_argument("c2d_foh: Ts must be finite and > 0");
+    sys.validate();
+    const Eigen::Index n = sys.nx(), m = sys.nu();
+    MatrixXd M = MatrixXd::Zero(n + 2 * m, n + 2 * m);
+    M.topLeftCorner(n, n) = sys.A * Ts;
+    M.block(0, n, n, m) = sys.B * Ts;
+    M.block(n, n + m, m, m) = MatrixXd::Identity(m, m);
+    // M = [[A Ts, B Ts, 0], [0, 0, I], [0, 0, 0]] is the system in tau = s / Ts driven by u0 + v tau:
+    // its exponential's (1,2) block is P, its (1,3) block int_0^1 e^{A Ts (1 - tau)} B Ts tau dtau = R / Ts.
+    const MatrixXd E = M.exp();
+    FohDiscretisation d;
+    d.Ad = E.topLeftCorner(n, n);
+    const MatrixXd P = E.block(0, n, n, m), R_over_T = E.block(0, n + m, n, m);
+    d.B_prev = P - R_over_T;
+    d.B_now = R_over_T;
+    return d;
+}
+
 }  // namespace fracdesign::design

@@ -173,9 +173,15 @@ ArmctrlForArm design_armctrl_for_arm(const ArmDocument& a, const Move& m, FfKind
 // psi(z_imu); psi'(z_imu)] with the checks of the seed arm's table (C_3 A = C_4, C_3 B = 0).
 tables::ParamTable arm_plant_table_for(const ArmDocument& a, double h);
 
-// The gap nominal (docs/gap.md, frac.model statespace): the full arm discretised (ZOH) at T, open loop
-// from the drive's torque_actual to motor_velocity and imu_rate, the IMU row delayed by d_o samples (a
-// delay chain of d_o states), gap.velocity motor_velocity, gap.force_input torque_actual.
+// The HIL IMU's reading period for the document's d_o, in acquisitions (T/2 each): r = 2 max(1, d_o - 1),
+// a reading every r/2 cycles sent r/2 cycles after its sample (arm_hil_scenario's imu.reading_cycles).
+int arm_imu_reading_cycles(const ArmDocument& a);
+
+// The gap nominal (docs/gap.md, frac.model statespace) of the rig's record: the full arm, open loop from
+// the drive's torque_actual to motor_velocity and imu_rate, first-order hold at T (the drive ramps its
+// torque from the previous torque_actual, state torque_prev), imu_rate the mean of the link rate h .. 2h - 1
+// cycles old, h = arm_imu_reading_cycles / 2 (the reading's ages through its hold; exact for h = 1),
+// gap.velocity motor_velocity, gap.force_input torque_actual.
 nlohmann::json arm_gap_nominal(const ArmDocument& a);
 
 // What the HIL rig can emulate (hil/imu.h reading_cycles 1..8 with d_o = reading_cycles / 2 + 1 for even

@@ -59,4 +59,14 @@ double dare_residual(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const E
 // Throws std::invalid_argument if sys is not continuous or Ts is not finite and > 0.
 StateSpace c2d_zoh(const StateSpace& sys, double Ts);
 
+// First-order hold of an input ramped linearly over each step from u[k-1] to u[k] (a drive whose
+// torque ramps between its reported values, hil/drive.h): x[k+1] = Ad x[k] + B_prev u[k-1] + B_now u[k]
+// with Ad = e^{A Ts}, P = int_0^Ts e^{A s} ds B, R = int_0^Ts e^{A (Ts - s)} B s ds, B_prev = P - R/Ts,
+// B_now = R/Ts (the blocks of exp([[A, B, 0], [0, 0, I], [0, 0, 0]] Ts)). Exact for a piecewise-linear
+// input. Throws std::invalid_argument as c2d_zoh.
+struct FohDiscretisation {
+    Eigen::MatrixXd Ad, B_prev, B_now;
+};
+FohDiscretisation c2d_foh(const StateSpace& sys, double Ts);
+
 }  // namespace fracdesign::design
