@@ -209,8 +209,10 @@ TEST(GapDocument, stated_asymmetric_input_limits_explain_a_clipped_actuator)
     EXPECT_LT(stated.gap_before_total, 0.01);
     const GapResult unstated = diagnose(nominal_from_json(lag_doc(), kTs), s, nullptr, o);
     EXPECT_GT(unstated.gap_before_total, 10 * stated.gap_before_total);
-    // The symmetric limit candidate cannot clip one side only: what it leaves is far above the stated model's gap.
-    EXPECT_GT(unstated.verdict.gap, 3 * stated.gap_before_total);
+    // Unstated, the (asymmetric) saturation candidate finds the clip's two edges.
+    EXPECT_EQ(first_effect(unstated), "saturation");
+    EXPECT_NEAR(param(unstated, "lower"), -0.6, 0.03);
+    EXPECT_NEAR(param(unstated, "upper"), 1.4, 0.07);
     // Only one side limited (null: no limit below).
     nlohmann::json upper = {{"input_limits", {{"u", {nullptr, 1.4}}}}};
     const NominalModel mu = nominal_from_json(lag_doc(upper), kTs);

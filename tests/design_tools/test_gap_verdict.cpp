@@ -126,23 +126,30 @@ TEST(GapVerdict, refuses_an_overflowing_sample_by_name)
 TEST(GapVerdict, flags_a_parameter_at_its_bound_and_not_the_true_effects)
 {
     // Viscous friction Fv = 0.35 a (in the lag's force units per velocity);
-    // the dead-zone candidate, fitted on a record without one, has both
-    // edges at 0: the lower edge at its upper bound, the upper at its lower.
+    // the backlash candidate, fitted on a record without one, has its width
+    // at its lower bound 0. (The dead-zone candidate is no such case since
+    // its edges are signed: it mimics part of the friction with edges of
+    // -0.211 +- 0.003 and 0.213 +- 0.003, not at 0; the old "0.1 % of the
+    // range" rule flagged them, and arm_b's Coulomb 5.93 +- 0.001, falsely.)
     const double Fv = 0.35 * kA / kB;
     const NominalModel m = nominal_from_json(lag_doc(kA), kTs);
     const GapResult r = diagnose(m, record({{Effect::viscous_friction, {Fv}}}), nullptr,
-                                 few({Effect::viscous_friction, Effect::deadzone}));
+                                 few({Effect::viscous_friction, Effect::backlash, Effect::deadzone}));
     ASSERT_EQ(r.verdict.effects.size(), 1u);
     EXPECT_EQ(r.verdict.effects[0].kind, Effect::viscous_friction);
     EXPECT_NEAR(r.verdict.effects[0].params[0], Fv, 0.05 * Fv);
     EXPECT_EQ(r.verdict.unidentified[0][0], "");
     bool seen = false;
-    for (const FitReport& c : r.candidates)
-        if (!c.effects.empty() && c.effects[0].kind == Effect::deadzone) {
+    for (const FitReport& c : r.candidates) {
+        if (c.effects.size() != 1) continue;
+        if (c.effects[0].kind == Effect::backlash) {
             seen = true;
-            EXPECT_NE(c.unidentified[0][0].find("upper bound 0"), std::string::npos) << c.unidentified[0][0];
-            EXPECT_NE(c.unidentified[0][1].find("lower bound 0"), std::string::npos) << c.unidentified[0][1];
+            EXPECT_NE(c.unidentified[0][0].find("lower bound 0"), std::string::npos) << c.unidentified[0][0];
         }
+        if (c.effects[0].kind == Effect::deadzone)  // well-determined edges off their bound 0 are identified
+            for (size_t z = 0; z < 2; ++z)
+                if (std::fabs(c.effects[0].params[z]) > 5 * c.stddev[0][z]) EXPECT_EQ(c.unidentified[0][z], "");
+    }
     EXPECT_TRUE(seen);
     const nlohmann::json j = result_json(r);
     EXPECT_EQ(j["verdict"]["params_unit"]["Fv"], "V/(rad/s)");

@@ -318,12 +318,14 @@ struct Evaluator {
 std::string unidentified_reason(double x, double sd, const ParamSpec& p)
 {
     char b[160];
-    // "At a bound" within 0.1 % of the range, but never farther from it than
-    // the estimate's own uncertainty allows: a value many standard deviations
-    // off a distant bound (Coulomb 5.93 +- 0.001 with a range of thousands)
-    // is identified.
-    double tol = std::isfinite(p.hi - p.lo) ? 1e-3 * (p.hi - p.lo) : 1e-6;
-    if (std::isfinite(sd) && std::isfinite(p.hi - p.lo)) tol = std::min(tol, std::max(2.0 * std::fabs(sd), 1e-6 * (p.hi - p.lo)));
+    // "At a bound": the bound lies within two standard deviations of the
+    // estimate (the data cannot tell the value from the bound), or within
+    // 0.1 % of the parameter's scale (normalized units are the data's scale
+    // of it, ParamSpec) where there is no uncertainty estimate. Not 0.1 % of
+    // the range: the ranges are up to 1e3 scales wide, so that flagged arm_b's
+    // Coulomb 5.93 +- 0.001 N m as "at its lower bound 0".
+    double tol = std::isfinite(p.hi - p.lo) ? std::min(1e-3 * (p.hi - p.lo), 1e-3) : 1e-6;
+    if (std::isfinite(sd)) tol = std::max(tol, 2.0 * std::fabs(sd));
     if (std::fabs(x - p.lo) <= tol) {
         std::snprintf(b, sizeof b, "at its lower bound %.4g", p.lo * p.scale);
         return b;
