@@ -343,7 +343,7 @@ TruthEffect draw_effect(const std::string& e, const BenchCase& c, const Scales& 
     } else if (e == "deadzone") {
         const double a = uniform(rng, 0.03, 0.1) * s.tau_pk;
         key("drive.deadzone", a);
-        t.params = {{"half_width", a}};
+        t.params = {{"lower", -a}, {"upper", a}};
     } else if (e == "gain_error") {
         const double g = hil_rng_uniform(rng) < 0.5 ? uniform(rng, 0.7, 0.88) : uniform(rng, 1.12, 1.4);
         key("drive.gain", g);
