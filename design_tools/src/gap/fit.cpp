@@ -1,0 +1,220 @@
+// fit.cpp - the fit of an effect set on the fit rows (Ceres) and its
+// FitReport on held-out data: gap, shrink, score, parameter std and the
+// parameters the data do not identify (see stages.hpp, docs/gap.md).
+#include <ceres/ceres.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "stages.hpp"
+
+namespace fracdesign {
+namespace gap {
+
+double total_gap(const std::vector<double>& nrmse, const std::vector<double>& weight)
+{
+    double s = 0, w = 0;
+    for (size_t c = 0; c < nrmse.size(); ++c) {
+        const double wc = c < weight.size() ? weight[c] : 1.0;
+        s += wc * nrmse[c] * nrmse[c];
+        w += wc;
+    }
+    return nrmse.empty() ? 0.0 : std::sqrt(s / w);
+}
+
+// nrmse per column: rms(y - yhat) / scale, scale = std of the output over the
+// whole record the rows come from (a held-out tail that sits in steady state
+// would make its own std a meaningless yardstick).
+std::vector<double> nrmse(const Eigen::MatrixXd& y, const Eigen::MatrixXd& yhat, const std::vector<double>& scale)
+{
+    std::vector<double> out;
+    for (Eigen::Index c = 0; c < y.cols(); ++c) {
+        const double e = std::sqrt((y.col(c) - yhat.col(c)).squaredNorm() / double(y.rows()));
+        out.push_back(scale[size_t(c)] > 0 ? e / scale[size_t(c)] : kNaN);
+    }
+    return out;
+}
+
+namespace {
+
+struct ReplayCost {
+    const FitProblem* P;
+    bool operator()(double const* const* params, double* residuals) const
+    {
+        std::vector<double> theta = P->base;
+        for (size_t i = 0; i < P->free_idx.size(); ++i) theta[size_t(P->free_idx[i])] = params[0][i];
+        P->residuals(theta, residuals);
+        return true;
+    }
+};
+
+}  // namespace
+
+// Least squares on the free parameters from theta0 (Levenberg-Marquardt,
+// forward numeric differences, one replay per parameter: the replay holds
+// clamp and rounding maps that automatic derivatives would differentiate
+// piecewise only, and each replay is a loop over the whole record).
+FitOutcome refine(FitProblem& P, const std::vector<double>& theta0, int max_iter)
+{
+    FitOutcome out;
+    out.theta = theta0;
+    out.stddev.assign(theta0.size(), kNaN);
+    P.free_idx.clear();
+    size_t k = 0;
+    for (const EffectSetup& e : P.effects)
+        for (const ParamSpec& p : e.spec) {
+            if (!p.fixed) P.free_idx.push_back(int(k));
+            ++k;
+        }
+    P.base = theta0;
+    if (P.free_idx.empty()) {
+        out.cost = P.cost(theta0);
+        out.brief = "no continuous parameters: grid value evaluated";
+        return out;
+    }
+    std::vector<double> x;
+    for (int i : P.free_idx) x.push_back(theta0[size_t(i)]);
+    ceres::Problem problem;
+    auto* cf = new ceres::DynamicNumericDiffCostFunction<ReplayCost, ceres::FORWARD>(new ReplayCost{&P});
+    cf->AddParameterBlock(int(x.size()));
+    cf->SetNumResiduals(int(P.y.size()));
+    problem.AddResidualBlock(cf, nullptr, x.data());
+    std::vector<ParamSpec> specs;
+    for (const EffectSetup& e : P.effects)
+        for (const ParamSpec& p : e.spec) specs.push_back(p);
+    for (size_t i = 0; i < P.free_idx.size(); ++i) {
+        const ParamSpec& p = specs[size_t(P.free_idx[i])];
+        x[i] = std::min(std::max(x[i], p.lo), p.hi);
+        problem.SetParameterLowerBound(x.data(), int(i), p.lo);
+        problem.SetParameterUpperBound(x.data(), int(i), p.hi);
+    }
+    ceres::Solver::Options so;
+    so.linear_solver_type = ceres::DENSE_QR;
+    so.max_num_iterations = max_iter;
+    so.function_tolerance = 1e-9;
+    so.num_threads = 1;
+    so.logging_type = ceres::SILENT;
+    ceres::Solver::Summary sum;
+    ceres::Solve(so, &problem, &sum);
+    out.brief = sum.BriefReport();
+    for (size_t i = 0; i < P.free_idx.size(); ++i) out.theta[size_t(P.free_idx[i])] = x[i];
+    out.cost = sum.final_cost;
+    // Parameter std from the Gauss-Newton covariance sigma^2 (J'J)^+ with the
+    // residual variance sigma^2 = 2 cost / (m - p); residuals are correlated
+    // in time, so this is optimistic.
+    double cost = 0;
+    ceres::CRSMatrix J;
+    problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, &J);
+    const size_t p = x.size();
+    Eigen::MatrixXd JtJ = Eigen::MatrixXd::Zero(Eigen::Index(p), Eigen::Index(p));
+    for (int r = 0; r < J.num_rows; ++r)
+        for (int a = J.rows[size_t(r)]; a < J.rows[size_t(r) + 1]; ++a)
+            for (int b = J.rows[size_t(r)]; b < J.rows[size_t(r) + 1]; ++b)
+                JtJ(J.cols[size_t(a)], J.cols[size_t(b)]) += J.values[size_t(a)] * J.values[size_t(b)];
+    const Eigen::MatrixXd C = JtJ.completeOrthogonalDecomposition().pseudoInverse();
+    const double s2 = 2.0 * cost / std::max(1.0, double(P.y.size()) - double(p));
+    for (size_t i = 0; i < p; ++i)
+        out.stddev[size_t(P.free_idx[i])] = C(Eigen::Index(i), Eigen::Index(i)) > 0 ? std::sqrt(C(Eigen::Index(i), Eigen::Index(i)) * s2) : kNaN;
+    return out;
+}
+
+// Fits the effect set: earlier effects start at `init`, the last one from each
+// of its starts (screened by cost first when it is a grid); returns the best.
+FitOutcome fit_set(FitProblem& P, const std::vector<double>& init, int max_iter)
+{
+    const EffectSetup& last = P.effects.back();
+    std::vector<std::vector<double>> starts;
+    for (const std::vector<double>& st : last.starts) {
+        std::vector<double> th = init;
+        th.insert(th.end(), st.begin(), st.end());
+        starts.push_back(th);
+    }
+    if (last.screen && starts.size() > 3) {
+        std::vector<std::pair<double, size_t>> c;
+        for (size_t i = 0; i < starts.size(); ++i) c.push_back({P.cost(starts[i]), i});
+        std::sort(c.begin(), c.end());
+        std::vector<std::vector<double>> keep;
+        for (size_t i = 0; i < 3; ++i) keep.push_back(starts[c[i].second]);
+        starts = keep;
+    }
+    FitOutcome best;
+    for (const std::vector<double>& st : starts) {
+        FitOutcome o = refine(P, st, max_iter);
+        if (o.cost < best.cost) best = o;
+    }
+    return best;
+}
+
+// Why the data do not identify a fitted parameter (normalized value x, std
+// sd), or "" when they do: at a bound (within 0.1 % of the bound range, or
+// 1e-6 of an unbounded side's scale), no std (a flat or singular cost), or a
+// std larger than the value (the data cannot tell it from zero).
+std::string unidentified_reason(double x, double sd, const ParamSpec& p)
+{
+    char b[160];
+    // "At a bound": the bound lies within two standard deviations of the
+    // estimate (the data cannot tell the value from the bound), or within
+    // 0.1 % of the parameter's scale (normalized units are the data's scale
+    // of it, ParamSpec) where there is no uncertainty estimate. Not 0.1 % of
+    // the range: the ranges are up to 1e3 scales wide, so that flagged arm_b's
+    // Coulomb 5.93 +- 0.001 N m as "at its lower bound 0".
+    double tol = std::isfinite(p.hi - p.lo) ? std::min(1e-3 * (p.hi - p.lo), 1e-3) : 1e-6;
+    if (std::isfinite(sd)) tol = std::max(tol, 2.0 * std::fabs(sd));
+    if (std::fabs(x - p.lo) <= tol) {
+        std::snprintf(b, sizeof b, "at its lower bound %.4g", p.lo * p.scale);
+        return b;
+    }
+    if (std::fabs(x - p.hi) <= tol) {
+        std::snprintf(b, sizeof b, "at its upper bound %.4g", p.hi * p.scale);
+        return b;
+    }
+    if (!std::isfinite(sd)) return "no uncertainty estimate (the cost is flat in it)";
+    if (sd > std::fabs(x)) {
+        std::snprintf(b, sizeof b, "std %.3g exceeds |value| %.3g", std::fabs(sd * p.scale), std::fabs(x * p.scale));
+        return b;
+    }
+    return "";
+}
+
+FitReport make_report(const FitProblem& P, const FitOutcome& o, const Evaluator& E, double penalty)
+{
+    FitReport r;
+    r.effects = P.instances(o.theta);
+    size_t k = 0;
+    for (const EffectSetup& e : P.effects) {
+        std::vector<double> sd;
+        std::vector<std::string> why;
+        for (const ParamSpec& p : e.spec) {
+            sd.push_back(p.fixed ? kNaN : p.scale * o.stddev[k]);
+            why.push_back(p.fixed ? "" : unidentified_reason(o.theta[k], o.stddev[k], p));
+            r.fitted_params += 1;
+            ++k;
+        }
+        r.stddev.push_back(sd);
+        r.unidentified.push_back(why);
+    }
+    const Eigen::MatrixXd yhat = E.simulate(r.effects);
+    r.gap_after = nrmse(E.y_eval, yhat, E.scale);
+    r.gap = total_gap(r.gap_after, E.weight);
+    if (!std::isfinite(r.gap)) r.gap = std::numeric_limits<double>::infinity();
+    r.shrink = E.gap_before > 0 ? 1.0 - r.gap / E.gap_before : 0.0;
+    r.score = r.shrink - penalty * r.fitted_params;
+    r.solver = o.brief;
+    r.band_nrmse = band_nrmse(E.y_eval, yhat, E.Ts, E.scale);
+    return r;
+}
+
+std::vector<double> normalized(const FitProblem& P, const std::vector<EffectInstance>& eff)
+{
+    std::vector<double> th;
+    for (size_t i = 0; i < eff.size(); ++i)
+        for (size_t j = 0; j < eff[i].params.size(); ++j) th.push_back(eff[i].params[j] / P.effects[i].spec[j].scale);
+    return th;
+}
+
+}  // namespace gap
+}  // namespace fracdesign

@@ -1,0 +1,152 @@
+// how_far.cpp - how far the gap shrinks: the gap before on held-out data,
+// forward selection of the effect set from the ranked single fits, the
+// verdict's confidence, and the traces the report plots (see stages.hpp,
+// docs/gap.md).
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "stages.hpp"
+
+namespace fracdesign {
+namespace gap {
+
+namespace {
+
+// The verdict's confidence (GapResult::Confidence): the runner-up to the
+// verdict's first effect among the single candidates (none included), the
+// score margin, and the candidates that remove the same share of the
+// held-out gap as the first within `margin` (shrink difference; a relative
+// gap difference would separate two fits that both reach the noise floor),
+// with the experiments that separate them.
+GapResult::Confidence confidence_of(const std::vector<FitReport>& candidates, const FitReport& verdict, double margin)
+{
+    GapResult::Confidence c;
+    auto name = [](const FitReport& f) { return f.effects.empty() ? std::string("none") : effect_name(f.effects[0].kind); };
+    c.first = name(verdict);
+    const FitReport* first = nullptr;
+    for (const FitReport& f : candidates)
+        if (name(f) == c.first) {
+            first = &f;
+            break;
+        }
+    if (!first) return c;
+    for (const FitReport& f : candidates) {
+        if (&f == first) continue;
+        if (c.runner_up.empty()) {
+            c.runner_up = name(f);
+            c.margin = first->score - f.score;
+        }
+        if (f.effects.empty() || first->effects.empty()) continue;
+        if (f.shrink >= first->shrink - margin) {
+            const EffectDescriptor &a = descriptor(first->effects[0].kind), &b = descriptor(f.effects[0].kind);
+            std::string x = std::string("to separate ") + a.name + " from " + b.name + ", record " + a.reveals;
+            if (std::string(a.reveals) != b.reveals) x += std::string("; and ") + b.reveals;
+            c.look_alikes.push_back({b.name, f.gap, x});
+        }
+    }
+    return c;
+}
+
+}  // namespace
+
+Evaluator held_out(const Baseline& B, const Signals& data, GapResult& R)
+{
+    const std::vector<std::string>& outs = B.outs;
+    const std::vector<double>& noise_sd = B.noise_sd;
+    const Eigen::MatrixXd& yeval = B.yeval;
+    const Signals& evsig = *B.evsig;
+    Evaluator E{&B.eval_setup(), yeval, R.eval_first, R.eval_samples, 0.0, data.Ts, {}, {}};
+    for (size_t c = 0; c < outs.size(); ++c) {
+        const Eigen::VectorXd yc = evsig.col(outs[c]);
+        E.scale.push_back(std::sqrt((yc.array() - yc.mean()).square().mean()));
+    }
+    const Eigen::MatrixXd yhat_nom = E.simulate({});
+    R.gap_before = nrmse(yeval, yhat_nom, E.scale);
+    // gap.noise: channels weighted by (std/noise)^2 in the aggregate gap,
+    // and the floor the noise alone leaves.
+    if (!noise_sd.empty()) {
+        std::vector<double> floor;
+        for (size_t c = 0; c < outs.size(); ++c) {
+            E.weight.push_back(std::pow(E.scale[c] / noise_sd[c], 2));
+            floor.push_back(noise_sd[c] / E.scale[c]);
+        }
+        R.noise_floor = total_gap(floor, E.weight);
+    }
+    R.gap_before_total = total_gap(R.gap_before, E.weight);
+    E.gap_before = R.gap_before_total;
+    R.band_nrmse_before = band_nrmse(yeval, yhat_nom, data.Ts, E.scale);
+    return E;
+}
+
+void how_far(const std::vector<std::pair<FitReport, EffectSetup>>& singles, const FitProblem& base_problem,
+             const Evaluator& E, const GapOptions& opt, GapResult& R)
+{
+    // Forward selection: add the best, refit all jointly, repeat while the
+    // held-out gap shrinks by at least `margin` (relative) and the penalized score grows.
+    R.verdict = none_candidate(R);
+    const bool at_noise_floor = R.noise_floor > 0 && R.gap_before_total <= kNoiseFloorFactor * R.noise_floor;
+    if (!at_noise_floor && !singles.empty() && singles.front().first.score >= opt.margin) {
+        FitProblem cur = base_problem;
+        cur.effects = {singles.front().second};
+        FitReport best = singles.front().first;
+        std::vector<double> theta = normalized(cur, best.effects);
+        std::vector<bool> used(singles.size(), false);
+        used[0] = true;
+        while (int(cur.effects.size()) < opt.max_effects) {
+            int pick = -1;
+            FitReport pick_rep;
+            std::vector<double> pick_theta;
+            FitProblem pick_prob;
+            int tried = 0;
+            for (size_t i = 0; i < singles.size() && tried < 3; ++i) {
+                if (used[i] || singles[i].first.score <= 0) continue;
+                ++tried;
+                // The new effect starts from its single fit, the others from the current set.
+                FitProblem P = cur;
+                EffectSetup es = singles[i].second;
+                FitProblem solo = base_problem;
+                solo.effects = {es};
+                es.starts = {normalized(solo, singles[i].first.effects)};
+                P.effects.push_back(es);
+                const FitOutcome o = fit_set(P, theta, opt.max_iterations / 2);
+                FitReport rep = make_report(P, o, E, opt.param_penalty);
+                if (pick < 0 || rep.gap < pick_rep.gap) {
+                    pick = int(i);
+                    pick_rep = rep;
+                    pick_theta = o.theta;
+                    pick_prob = P;
+                }
+            }
+            if (pick < 0 || !(pick_rep.gap <= (1.0 - opt.margin) * best.gap) || pick_rep.score <= best.score) break;
+            used[size_t(pick)] = true;
+            cur = pick_prob;
+            theta = pick_theta;
+            best = pick_rep;
+        }
+        R.verdict = best;
+    }
+    R.confidence = confidence_of(R.candidates, R.verdict, opt.margin);
+}
+
+void report_traces(const Baseline& B, const Signals& data, GapResult& R)
+{
+    const std::vector<std::string>& outs = B.outs;
+    const Eigen::Index N = B.N;
+    const Signals& evsig = *B.evsig;
+    // Traces for the report.
+    const Eigen::Index n_tr = R.eval_first + R.eval_samples;
+    const ReplayTrace aug = replay(B.eval_setup(), R.verdict.effects, n_tr);
+    const ReplayTrace nomtr = replay(B.eval_setup(), {}, n_tr);
+    R.t = Eigen::VectorXd::LinSpaced(n_tr, evsig.t0, evsig.t0 + double(n_tr - 1) * data.Ts);
+    R.measured.resize(n_tr, Eigen::Index(outs.size()));
+    for (size_t c = 0; c < outs.size(); ++c) R.measured.col(Eigen::Index(c)) = evsig.col(outs[c]).head(n_tr);
+    R.nominal = nomtr.y;
+    R.augmented = aug.y;
+    R.where_t = Eigen::VectorXd::LinSpaced(N, data.t0, data.t0 + double(N - 1) * data.Ts);
+    R.where_residual = B.resn;
+}
+
+}  // namespace gap
+}  // namespace fracdesign

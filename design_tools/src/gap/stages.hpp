@@ -1,0 +1,190 @@
+// stages.hpp - the stages of diagnose() and what passes between them
+// (internal to src/gap; the public interface is fracdesign/gap/diagnosis.hpp).
+//
+//  diagnosis.cpp   diagnose(): baseline -> where -> which -> how far
+//  baseline.cpp    the nominal against the record: input checks, fit /
+//                  held-out split, nominal replay and its residuals
+//  where.cpp       the fits' context (scales, quantization steps, residual
+//                  peaks); bands, modes against the measured spectrum, time
+//                  windows with their operating condition
+//  which.cpp       every candidate at each of its sites fitted alone (in
+//                  parallel), ranked, the nested Coulomb / Stribeck rule
+//  how_far.cpp     gap before on held-out data, forward selection, the
+//                  verdict's confidence, the traces for the report
+//  fit.cpp         the Ceres fit of an effect set and its FitReport
+//  spectrum.cpp    frequency bands and spectra (on welch_psd)
+//  result_json.cpp result.json
+#pragma once
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "fracdesign/gap/diagnosis.hpp"
+#include "fracdesign/gap/effects.hpp"
+
+namespace fracdesign {
+namespace gap {
+
+inline const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+inline double rms(const Eigen::VectorXd& v) { return v.size() ? std::sqrt(v.squaredNorm() / double(v.size())) : 0.0; }
+
+// ---- spectrum.cpp -------------------------------------------------------------
+
+// Decades [0, 0.1), [0.1, 1), ... up to the Nyquist frequency 0.5/Ts [Hz].
+std::vector<std::pair<double, double>> band_edges(double Ts);
+// Power of two >= n: records are zero-padded before the FFT.
+Eigen::Index fft_length(Eigen::Index n);
+// Energy of each column of x in each band (rows: bands, columns: x's).
+Eigen::MatrixXd band_energy(const Eigen::MatrixXd& x, double Ts, const std::vector<std::pair<double, double>>& bands);
+// Per band, per output: sqrt(band residual energy / n) / scale.
+std::vector<std::vector<double>> band_nrmse(const Eigen::MatrixXd& y, const Eigen::MatrixXd& yhat, double Ts,
+                                            const std::vector<double>& scale);
+// Smoothed periodogram of one signal, one-sided, bins k / (fft_length(n) Ts).
+std::vector<double> smoothed_spectrum(const Eigen::VectorXd& x);
+
+// ---- fit.cpp ------------------------------------------------------------------
+
+// nrmse per column: rms(y - yhat) / scale.
+std::vector<double> nrmse(const Eigen::MatrixXd& y, const Eigen::MatrixXd& yhat, const std::vector<double>& scale);
+
+// An effect set to fit on the fit rows; parameters are normalized by their
+// ParamSpec::scale (theta = value / scale).
+struct FitProblem {
+    const ReplaySetup* setup;
+    Eigen::MatrixXd y;                 // measured fit rows
+    std::vector<double> sigma;         // per output normalization
+    std::vector<EffectSetup> effects;
+    std::vector<double> base;          // full normalized vector
+    std::vector<int> free_idx;         // indices into base optimized by Ceres
+
+    std::vector<EffectInstance> instances(const std::vector<double>& theta) const
+    {
+        std::vector<EffectInstance> out;
+        size_t k = 0;
+        for (const EffectSetup& e : effects) {
+            EffectInstance in{e.kind, {}, e.site, e.coupling};
+            for (const ParamSpec& p : e.spec) in.params.push_back(p.scale * theta[k++]);
+            out.push_back(in);
+        }
+        return out;
+    }
+    void residuals(const std::vector<double>& theta, double* r) const
+    {
+        const ReplayTrace tr = replay(*setup, instances(theta), y.rows());
+        const Eigen::Index N = y.rows();
+        for (Eigen::Index c = 0; c < y.cols(); ++c)
+            for (Eigen::Index k = 0; k < N; ++k) {
+                const double e = (y(k, c) - tr.y(k, c)) / sigma[size_t(c)];
+                r[c * N + k] = std::isfinite(e) ? std::min(std::max(e, -1e6), 1e6) : 1e6;  // diverged replays stay finite
+            }
+    }
+    double cost(const std::vector<double>& theta) const
+    {
+        std::vector<double> r(size_t(y.size()));
+        residuals(theta, r.data());
+        double s = 0;
+        for (double e : r) s += e * e;
+        return 0.5 * s;
+    }
+};
+
+struct FitOutcome {
+    std::vector<double> theta;
+    std::vector<double> stddev;  // normalized, per entry of theta (NaN for fixed)
+    double cost = std::numeric_limits<double>::infinity();
+    std::string brief;
+};
+
+// The held-out yardstick: replays an effect set on the evaluated record and
+// keeps its held-out rows.
+struct Evaluator {
+    const ReplaySetup* eval;
+    Eigen::MatrixXd y_eval;  // measured held-out rows
+    Eigen::Index first, n;
+    double gap_before;
+    double Ts;
+    std::vector<double> scale;  // std of each output over the whole evaluated record
+    std::vector<double> weight; // channel weights of the aggregate gap (empty: equal)
+
+    Eigen::MatrixXd simulate(const std::vector<EffectInstance>& eff) const
+    {
+        const ReplayTrace tr = replay(*eval, eff, first + n);
+        return tr.y.bottomRows(n);
+    }
+};
+
+// Least squares on the free parameters from theta0.
+FitOutcome refine(FitProblem& P, const std::vector<double>& theta0, int max_iter);
+// Fits the effect set: earlier effects start at `init`, the last one from
+// each of its starts; returns the best.
+FitOutcome fit_set(FitProblem& P, const std::vector<double>& init, int max_iter);
+// Why the data do not identify a fitted parameter, or "" when they do.
+std::string unidentified_reason(double x, double sd, const ParamSpec& p);
+// The fit's FitReport: held-out gap, shrink, score, parameter std.
+FitReport make_report(const FitProblem& P, const FitOutcome& o, const Evaluator& E, double penalty);
+// Physical parameters of an effect set in P's normalized units.
+std::vector<double> normalized(const FitProblem& P, const std::vector<EffectInstance>& eff);
+
+// ---- baseline.cpp -------------------------------------------------------------
+
+// The nominal model against the record. The fits point to the replay
+// set-ups (FitProblem::setup, Evaluator::eval): a Baseline stays where it
+// was made while they run.
+struct Baseline {
+    std::vector<std::string> outs;    // compared outputs
+    std::vector<double> noise_sd;     // gap.noise per compared output (empty: not stated)
+    ReplaySetup fit_setup, eval_setup_v;
+    bool validated = false;           // a separate validation record is evaluated
+    const Signals* evsig = nullptr;   // the evaluated record (validation record or the data)
+    Eigen::Index N = 0;               // samples of the fit record
+    Eigen::MatrixXd ymeas, yeval;     // measured outputs: whole fit record; held-out rows
+    ReplayTrace nom;                  // nominal replay on the fit record
+    std::vector<double> coupling_Sq;  // rms nominal deflection of each coupling over the fit rows
+    std::vector<double> sigma;        // std of each output over the fit rows (1 where 0)
+    Eigen::MatrixXd resn;             // (ymeas - nom.y) / sigma, whole fit record
+
+    const ReplaySetup& eval_setup() const { return validated ? eval_setup_v : fit_setup; }
+};
+
+// Checks the inputs, splits the record, replays the nominal and refuses a
+// replay that diverges; fills R's description of the data and the split.
+Baseline baseline(const NominalModel& model, const Signals& data, const Signals* validate, const GapOptions& opt,
+                  GapResult& R);
+
+// ---- where.cpp ----------------------------------------------------------------
+
+// The fits' context: input, velocity and output scales, quantization steps,
+// the nominal residual's largest peaks.
+FitContext fit_context(const Baseline& B, const Signals& data, const GapResult& R);
+// Where: R.bands, R.modes, R.windows.
+void where(const Baseline& B, const NominalModel& model, const Signals& data, GapResult& R);
+
+// ---- which.cpp ----------------------------------------------------------------
+
+// The nominal model's own entry among the candidates ("none").
+FitReport none_candidate(const GapResult& R);
+// Which: every candidate alone at each of its sites; R.candidates (none
+// included, best first) and R.skipped; returns each effect's best single
+// fit with its set-up, best first.
+std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, const GapOptions& opt,
+                                                     const FitContext& ctx, const Baseline& B,
+                                                     const FitProblem& base_problem, const Evaluator& E, GapResult& R);
+
+// ---- how_far.cpp --------------------------------------------------------------
+
+// The held-out evaluator; R.gap_before, its total, the noise floor and the
+// bands before.
+Evaluator held_out(const Baseline& B, const Signals& data, GapResult& R);
+// How far: forward selection from the ranked singles; R.verdict, R.confidence.
+void how_far(const std::vector<std::pair<FitReport, EffectSetup>>& singles, const FitProblem& base_problem,
+             const Evaluator& E, const GapOptions& opt, GapResult& R);
+// Traces for the report: R.t, measured, nominal, augmented, where_t, where_residual.
+void report_traces(const Baseline& B, const Signals& data, GapResult& R);
+
+}  // namespace gap
+}  // namespace fracdesign

@@ -1,0 +1,154 @@
+// which.cpp - which effect causes the gap: every candidate at each of its
+// sites on the model, fitted alone on the fit rows (the fits run in
+// parallel), scored on the held-out rows and ranked, with the nested
+// Coulomb / Stribeck rule (see stages.hpp, docs/gap.md).
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "stages.hpp"
+
+namespace fracdesign {
+namespace gap {
+
+FitReport none_candidate(const GapResult& R)
+{
+    FitReport none;
+    none.gap_after = R.gap_before;
+    none.gap = R.gap_before_total;
+    none.band_nrmse = R.band_nrmse_before;
+    none.solver = "nominal model";
+    return none;
+}
+
+std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, const GapOptions& opt,
+                                                     const FitContext& ctx, const Baseline& B,
+                                                     const FitProblem& base_problem, const Evaluator& E, GapResult& R)
+{
+    const std::vector<double>& coupling_Sq = B.coupling_Sq;
+    // The single fits are independent: they run on opt.threads workers
+    // (each job's result lands in its own slot, so the outcome does not
+    // depend on the thread count or the order the jobs finish in).
+    struct Job {
+        size_t effect;
+        EffectSetup setup;
+    };
+    std::vector<Job> jobs;
+    for (size_t ie = 0; ie < opt.effects.size(); ++ie) {
+        const Effect e = opt.effects[ie];
+        // The effect at each of its sites on this model (effect_sites: the
+        // force input, the outputs, each declared coupling): each variant is
+        // fitted, the one with the better score is the effect's candidate.
+        std::vector<EffectSetup> variants;
+        for (const std::pair<Site, int>& site : effect_sites(e, model)) {
+            if (site.first == Site::coupling) {
+                const Coupling& cp = model.couplings[size_t(site.second)];
+                if (!(coupling_Sq[size_t(site.second)] > 0)) {
+                    R.skipped.push_back(effect_name(e) + " in the coupling '" + cp.name + "': the nominal replay never deflects it");
+                    continue;
+                }
+                FitContext cc = ctx;
+                cc.Sq = coupling_Sq[size_t(site.second)];
+                cc.kq = cp.stiffness;
+                cc.wq = cp.w_slow;
+                cc.coupling = site.second;
+                variants.push_back(descriptor(e).setup(cc, Site::coupling));
+            } else if (needs_velocity(e) && model.velocity < 0) {
+                R.skipped.push_back(effect_name(e) + (model.couplings.empty() ? "" : " at the force input") +
+                                    ": the model names no velocity output (gap.velocity)");
+            } else {
+                variants.push_back(descriptor(e).setup(ctx, site.first));
+            }
+        }
+        for (const EffectSetup& es : variants) {
+            if (es.starts.empty()) {
+                R.skipped.push_back(effect_name(e) + (e == Effect::quantization
+                                                           ? ": no output's data lie on a lattice coarser than its noise"
+                                                           : ": no start value from the data"));
+                continue;
+            }
+            jobs.push_back({ie, es});
+        }
+    }
+    std::vector<FitReport> job_report(jobs.size());
+    {
+        std::atomic<size_t> next{0};
+        size_t done = 0;
+        std::mutex mu;
+        std::exception_ptr failure;
+        auto work = [&]() {
+            for (size_t i = next++; i < jobs.size(); i = next++) {
+                try {
+                    FitProblem P = base_problem;
+                    P.effects = {jobs[i].setup};
+                    const FitOutcome o = fit_set(P, {}, opt.max_iterations);
+                    job_report[i] = make_report(P, o, E, opt.param_penalty);
+                } catch (...) {
+                    std::lock_guard<std::mutex> lk(mu);
+                    if (!failure) failure = std::current_exception();
+                }
+                std::lock_guard<std::mutex> lk(mu);
+                ++done;
+                if (opt.progress)
+                    opt.progress("gap: fitted " + std::to_string(done) + "/" + std::to_string(jobs.size()) + " candidates (" +
+                                 effect_name(jobs[i].setup.kind) +
+                                 (jobs[i].setup.site == Site::coupling
+                                      ? " in the coupling '" + model.couplings[size_t(jobs[i].setup.coupling)].name + "'"
+                                      : jobs[i].setup.site == Site::output ? " at the outputs" : "") + ")");
+            }
+        };
+        const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+        const size_t nthreads = std::min<size_t>(jobs.size(), opt.threads > 0 ? size_t(opt.threads) : size_t(hw));
+        std::vector<std::thread> pool;
+        for (size_t t = 1; t < nthreads; ++t) pool.emplace_back(work);
+        work();
+        for (std::thread& t : pool) t.join();
+        if (failure) std::rethrow_exception(failure);
+    }
+    std::vector<std::pair<FitReport, EffectSetup>> singles;
+    for (size_t ie = 0; ie < opt.effects.size(); ++ie) {
+        bool have = false;
+        std::pair<FitReport, EffectSetup> best;
+        for (size_t i = 0; i < jobs.size(); ++i) {
+            if (jobs[i].effect != ie) continue;
+            if (!have || job_report[i].score > best.first.score) best = {job_report[i], jobs[i].setup};
+            have = true;
+        }
+        if (have) singles.push_back(best);
+    }
+    for (const auto& s : singles) R.candidates.push_back(s.first);
+    R.candidates.push_back(none_candidate(R));
+    std::stable_sort(R.candidates.begin(), R.candidates.end(),
+                     [](const FitReport& a, const FitReport& b) { return a.score > b.score; });
+    std::sort(singles.begin(), singles.end(),
+              [](const std::pair<FitReport, EffectSetup>& a, const std::pair<FitReport, EffectSetup>& b) {
+                  return a.first.score > b.first.score;
+              });
+    // Nested effects: stribeck_friction contains coulomb_friction (Fs = Fc);
+    // it ranks above it only when it lowers the held-out gap by the margin.
+    auto nested_rule = [&](auto& list, auto report_of) {
+        int ic = -1, is = -1;
+        for (size_t i = 0; i < list.size(); ++i) {
+            const FitReport& f = report_of(list[i]);
+            if (f.effects.size() != 1) continue;
+            if (f.effects[0].kind == Effect::coulomb_friction) ic = int(i);
+            if (f.effects[0].kind == Effect::stribeck_friction) is = int(i);
+        }
+        if (ic > is && is >= 0 && report_of(list[size_t(is)]).gap > (1.0 - opt.margin) * report_of(list[size_t(ic)]).gap) {
+            auto moved = list[size_t(ic)];
+            list.erase(list.begin() + ic);
+            list.insert(list.begin() + is, moved);
+        }
+    };
+    nested_rule(R.candidates, [](const FitReport& f) -> const FitReport& { return f; });
+    nested_rule(singles, [](const std::pair<FitReport, EffectSetup>& p) -> const FitReport& { return p.first; });
+    return singles;
+}
+
+}  // namespace gap
+}  // namespace fracdesign
