@@ -1,9 +1,8 @@
-// spectrum.cpp - frequency bands and spectra of the diagnosis's residuals
-// (see stages.hpp, docs/gap.md).
+// spectrum.cpp - frequency bands and spectra of the diagnosis's residuals,
+// all from the one estimator welch_psd (core/welch.cpp; see stages.hpp,
+// docs/gap.md).
 #include <algorithm>
 #include <cmath>
-#include <complex>
-#include <unsupported/Eigen/FFT>
 
 #include "fracdesign/welch.hpp"
 #include "stages.hpp"
@@ -33,22 +32,39 @@ Eigen::Index fft_length(Eigen::Index n)
     return p;
 }
 
-// Energy of each column of x in each band (Parseval: sum over bins |X_k|^2 / N = sum |x|^2).
+// One-sided periodogram of x at fs = 1 (bins k / nfft, k = 0..nfft/2,
+// nfft = fft_length(x.size())): the project's spectrum estimator welch_psd
+// with one rectangular segment of the whole record, zero-padded; density
+// P_k = s_k |X_k|^2 / n with s_k = 2 (1 at DC and Nyquist), n = x.size().
+std::vector<double> periodogram(const Eigen::VectorXd& x)
+{
+    WelchOptions o;
+    o.fs = 1.0;
+    o.nperseg = int(x.size());
+    o.noverlap = 0;
+    o.nfft = int(fft_length(x.size()));
+    o.window.assign(size_t(x.size()), 1.0);
+    return welch_psd(std::vector<double>(x.data(), x.data() + x.size()), o).P;
+}
+
+// Energy of each column of x in each band: P_k n / N is the energy of bin k
+// and its mirror N - k (Parseval: the bins add up to sum |x|^2); a column
+// that is not finite (a diverged replay) has NaN energy in every band.
 Eigen::MatrixXd band_energy(const Eigen::MatrixXd& x, double Ts, const std::vector<std::pair<double, double>>& bands)
 {
-    Eigen::FFT<double> fft;
     const Eigen::Index N = fft_length(x.rows());
     Eigen::MatrixXd E = Eigen::MatrixXd::Zero(Eigen::Index(bands.size()), x.cols());
     for (Eigen::Index c = 0; c < x.cols(); ++c) {
-        std::vector<double> in(x.col(c).data(), x.col(c).data() + x.rows());
-        in.resize(size_t(N), 0.0);
-        std::vector<std::complex<double>> X;
-        fft.fwd(X, in);
-        for (Eigen::Index k = 0; k < N; ++k) {
-            const double f = double(std::min(k, N - k)) / (double(N) * Ts);
+        if (!x.col(c).allFinite()) {
+            E.col(c).setConstant(kNaN);
+            continue;
+        }
+        const std::vector<double> P = periodogram(x.col(c));
+        for (size_t k = 0; k < P.size(); ++k) {
+            const double f = double(k) / (double(N) * Ts);
             for (size_t b = 0; b < bands.size(); ++b)
                 if (f >= bands[b].first && (f < bands[b].second || b + 1 == bands.size())) {
-                    E(Eigen::Index(b), c) += std::norm(X[size_t(k)]) / double(N);
+                    E(Eigen::Index(b), c) += P[k] * double(x.rows()) / double(N);
                     break;
                 }
         }
@@ -72,18 +88,10 @@ std::vector<std::vector<double>> band_nrmse(const Eigen::MatrixXd& y, const Eige
     return out;
 }
 
-// Smoothed periodogram (5-bin moving average) of one signal, one-sided, on
-// the zero-padded length fft_length(x.size()): the project's spectrum
-// estimator (welch_psd) with one rectangular segment of the whole record.
+// Smoothed periodogram (5-bin moving average) of one signal.
 std::vector<double> smoothed_spectrum(const Eigen::VectorXd& x)
 {
-    WelchOptions o;
-    o.fs = 1.0;
-    o.nperseg = int(x.size());
-    o.noverlap = 0;
-    o.nfft = int(fft_length(x.size()));
-    o.window.assign(size_t(x.size()), 1.0);
-    const std::vector<double> P = welch_psd(std::vector<double>(x.data(), x.data() + x.size()), o).P;
+    const std::vector<double> P = periodogram(x);
     const size_t H = P.size();
     std::vector<double> S(H, 0.0);
     for (size_t k = 0; k < H; ++k) {
