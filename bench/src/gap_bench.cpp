@@ -13,9 +13,9 @@
 #include <memory>
 #include <sstream>
 #include <stdexcept>
-#include <unsupported/Eigen/MatrixFunctions>
 
 #include "fracbench/families.hpp"
+#include "fracdesign/design/riccati.hpp"
 #include "fracdesign/io/signal_csv.hpp"
 
 extern "C" {
@@ -424,26 +424,22 @@ nlohmann::json bench_nominal_doc()
     // Plant states x = [theta_M, omega_M, psi, psi'] (seed 004 (4.8)-(4.12),
     // no friction). Over a cycle the drive's torque ramps from its previous
     // value to the new one (hil/drive.h with tau_current = 0), so the exact
-    // discretisation is first-order hold: x+ = Phi x + (P - R/T) u- + (R/T) u
-    // with P = int_0^T e^{As} ds B, R = int_0^T e^{A(T-s)} B s ds, from the
-    // exponential of [[A, B, 0], [0, 0, 1], [0, 0, 0]] T. Two more states:
-    // the previous torque u- and the link rate one cycle ago (the IMU reading
-    // the controller sees at cycle k was sampled at t_{k-1}).
-    Eigen::Matrix4d A;
-    A << 0, 1, 0, 0, -kCs / kIM, 0, kCs / kIM, 0, 0, 0, 0, 1, kCs / kIL, 0, -kCs / kIL, 0;
-    Eigen::Vector4d B(0, 1 / kIM, 0, 0);
-    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(6, 6);
-    M.topLeftCorner(4, 4) = A;
-    M.block(0, 4, 4, 1) = B;
-    M(4, 5) = 1;
-    const Eigen::MatrixXd E = (M * kT).exp();
-    const Eigen::Matrix4d Phi = E.topLeftCorner(4, 4);
-    const Eigen::Vector4d P = E.block(0, 4, 4, 1), R = E.block(0, 5, 4, 1);
+    // discretisation is first-order hold (design::c2d_foh):
+    // x+ = Phi x + B_prev u- + B_now u. Two more states: the previous torque
+    // u- and the link rate one cycle ago (the IMU reading the controller sees
+    // at cycle k was sampled at t_{k-1}).
+    fracdesign::StateSpace plant;
+    plant.A.resize(4, 4);
+    plant.A << 0, 1, 0, 0, -kCs / kIM, 0, kCs / kIM, 0, 0, 0, 0, 1, kCs / kIL, 0, -kCs / kIL, 0;
+    plant.B = Eigen::Vector4d(0, 1 / kIM, 0, 0);
+    plant.C = Eigen::MatrixXd::Identity(4, 4);
+    plant.D = Eigen::MatrixXd::Zero(4, 1);
+    const fracdesign::design::FohDiscretisation foh = fracdesign::design::c2d_foh(plant, kT);
     Eigen::MatrixXd Ad = Eigen::MatrixXd::Zero(6, 6), Bd = Eigen::MatrixXd::Zero(6, 1);
-    Ad.topLeftCorner(4, 4) = Phi;
-    Ad.block(0, 4, 4, 1) = P - R / kT;
+    Ad.topLeftCorner(4, 4) = foh.Ad;
+    Ad.block(0, 4, 4, 1) = foh.B_prev;
     Ad(5, 3) = 1;
-    Bd.block(0, 0, 4, 1) = R / kT;
+    Bd.block(0, 0, 4, 1) = foh.B_now;
     Bd(4, 0) = 1;
     auto rows = [](const Eigen::MatrixXd& X) {
         nlohmann::json j = nlohmann::json::array();
@@ -456,13 +452,13 @@ nlohmann::json bench_nominal_doc()
     };
     // The gear (gap.coupling): twist theta_M - psi, spring torque c_s twist
     // decelerating the motor and driving the link; an extra spring torque
-    // held over one cycle moves the state by int_0^T e^{As} ds [0, -1/I_M, 0, 1/I_L]'.
-    Eigen::Matrix<double, 5, 5> Mg = Eigen::Matrix<double, 5, 5>::Zero();
-    Mg.topLeftCorner(4, 4) = A * kT;
-    Mg.block(0, 4, 4, 1) = Eigen::Vector4d(0, -1 / kIM, 0, 1 / kIL) * kT;
-    const Eigen::Matrix<double, 5, 5> Eg = Mg.exp();
+    // held over one cycle moves the state by its zero-order-hold input
+    // column int_0^T e^{As} ds [0, -1/I_M, 0, 1/I_L]' (design::c2d_zoh).
+    fracdesign::StateSpace gear = plant;
+    gear.B = Eigen::Vector4d(0, -1 / kIM, 0, 1 / kIL);
+    const fracdesign::StateSpace gear_d = fracdesign::design::c2d_zoh(gear, kT);
     nlohmann::json gear_torque = nlohmann::json::array(), gear_twist = {1, 0, -1, 0, 0, 0};
-    for (int i = 0; i < 6; ++i) gear_torque.push_back(i < 4 ? Eg(i, 4) : 0.0);
+    for (int i = 0; i < 6; ++i) gear_torque.push_back(i < 4 ? gear_d.B(i, 0) : 0.0);
     Eigen::MatrixXd C = Eigen::MatrixXd::Zero(3, 6), D = Eigen::MatrixXd::Zero(3, 1);
     C(0, 0) = 1;
     C(1, 1) = 1;
