@@ -3,13 +3,13 @@
 
 #include "controllers/document.hpp"
 
+#include "fracdesign/design/riccati.hpp"
 #include "fracdesign/model_json.hpp"
 
 #include <cmath>
 #include <complex>
 #include <fstream>
 #include <stdexcept>
-#include <unsupported/Eigen/MatrixFunctions>
 
 namespace fracdesign {
 namespace gap {
@@ -23,15 +23,17 @@ int NominalModel::output_index(const std::string& n) const
     return -1;
 }
 
+// The project's one zero-order hold (design::c2d_zoh, seed 004 (7.3)-(7.7)).
 void zoh(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, double Ts, Eigen::MatrixXd& Ad, Eigen::MatrixXd& Bd)
 {
-    const Eigen::Index n = A.rows(), m = B.cols();
-    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n + m, n + m);
-    M.topLeftCorner(n, n) = A * Ts;
-    M.topRightCorner(n, m) = B * Ts;
-    const Eigen::MatrixXd E = M.exp();
-    Ad = E.topLeftCorner(n, n);
-    Bd = E.topRightCorner(n, m);
+    StateSpace s;
+    s.A = A;
+    s.B = B;
+    s.C = Eigen::MatrixXd::Zero(0, A.rows());
+    s.D = Eigen::MatrixXd::Zero(0, B.cols());
+    const StateSpace d = design::c2d_zoh(s, Ts);
+    Ad = d.A;
+    Bd = d.B;
 }
 
 namespace {
