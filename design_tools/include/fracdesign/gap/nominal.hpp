@@ -167,7 +167,8 @@ void read_known_section(const nlohmann::json& gap, double plant_delay_s, Nominal
 void read_statespace(const nlohmann::json& j, Eigen::Index m, Eigen::Index p, double Ts, const std::string& where,
                      Eigen::MatrixXd& A, Eigen::MatrixXd& B, Eigen::MatrixXd& C, Eigen::MatrixXd& D);
 
-// Zero-order-hold discretisation: Ad = e^{A Ts}, Bd = int_0^Ts e^{A s} ds B.
+// Zero-order-hold discretisation: Ad = e^{A Ts}, Bd = int_0^Ts e^{A s} ds B
+// (design::c2d_zoh; std::invalid_argument on a non-finite entry or Ts <= 0).
 void zoh(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, double Ts, Eigen::MatrixXd& Ad, Eigen::MatrixXd& Bd);
 
 }  // namespace gap
