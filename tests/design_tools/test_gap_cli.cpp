@@ -3,6 +3,8 @@
 // stderr, a non-zero exit, and no output directory.
 #include <gtest/gtest.h>
 
+#include "cli_scratch.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -16,27 +18,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Outcome {
-    int status;
-    std::string err;
-};
+using cli_scratch::Outcome;
+using cli_scratch::write;
 
-fs::path workdir()
-{
-    static const fs::path d = [] {
-        fs::path p = fs::temp_directory_path() / ("fracdesign_gap_cli_" + std::to_string(::getpid()));
-        fs::remove_all(p);
-        fs::create_directories(p);
-        return p;
-    }();
-    return d;
-}
-
-void write(const fs::path& p, const std::string& s)
-{
-    std::ofstream o(p);
-    o << s;
-}
+fs::path workdir() { return cli_scratch::dir("fracdesign_gap_cli"); }
 
 const char* kModel = R"({"schema": "frac.model", "version": 1, "kind": "statespace", "name": "msd",
   "time": "continuous", "A": [[0, 1], [-20, -2]], "B": [[0], [1]], "C": [[1, 0], [0, 1]], "D": [[0], [0]],
@@ -62,13 +47,7 @@ std::string csv(const std::string& header, int rows, double jump_at = -1, bool n
 
 Outcome run(const std::string& args)
 {
-    const fs::path err = workdir() / "stderr.txt";
-    const std::string cmd = std::string(FRACDESIGN_EXE) + " gap " + args + " > /dev/null 2> " + err.string();
-    const int rc = std::system(cmd.c_str());
-    std::ifstream in(err);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return {rc, ss.str()};
+    return cli_scratch::run(std::string(FRACDESIGN_EXE) + " gap " + args, workdir() / "stderr.txt");
 }
 
 std::string lower(std::string s)

@@ -5,6 +5,8 @@
 // line and writes no output.
 #include <gtest/gtest.h>
 
+#include "cli_scratch.hpp"
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -130,16 +132,7 @@ TEST(GapControllerBadInput, unknown_kind_or_field)
 
 namespace {
 
-fs::path workdir()
-{
-    static const fs::path d = [] {
-        fs::path p = fs::temp_directory_path() / ("fracdesign_gap_ctl_" + std::to_string(::getpid()));
-        fs::remove_all(p);
-        fs::create_directories(p);
-        return p;
-    }();
-    return d;
-}
+fs::path workdir() { return cli_scratch::dir("fracdesign_gap_ctl"); }
 
 }  // namespace
 
@@ -164,13 +157,11 @@ TEST(GapControllerBadInput, fracdesign_gap_exits_non_zero_with_one_line_and_no_o
         const fs::path m = d / ("model" + std::to_string(i) + ".json"), out = d / ("out" + std::to_string(i)), err = d / "err.txt";
         ++i;
         std::ofstream(m) << c.first.dump(1);
-        const std::string cmd = std::string(FRACDESIGN_EXE) + " gap --model " + m.string() + " --data " + (d / "data.csv").string() +
-                                " --out " + out.string() + " > /dev/null 2> " + err.string();
-        EXPECT_NE(std::system(cmd.c_str()), 0) << c.second;
-        std::ifstream in(err);
-        std::stringstream ss;
-        ss << in.rdbuf();
-        const std::string e = ss.str();
+        const cli_scratch::Outcome r = cli_scratch::run(std::string(FRACDESIGN_EXE) + " gap --model " + m.string() +
+                                                            " --data " + (d / "data.csv").string() + " --out " + out.string(),
+                                                        err);
+        EXPECT_NE(r.status, 0) << c.second;
+        const std::string& e = r.err;
         EXPECT_NE(e.find(c.second + ":"), std::string::npos) << e;
         EXPECT_EQ(std::count(e.begin(), e.end(), '\n'), 1) << e;
         EXPECT_FALSE(fs::exists(out)) << c.second;

@@ -4,6 +4,8 @@
 // value and what is allowed, a non-zero exit and no output directory.
 #include <gtest/gtest.h>
 
+#include "cli_scratch.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -17,22 +19,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path workdir()
-{
-    static const fs::path d = [] {
-        fs::path p = fs::temp_directory_path() / ("fracdesign_gap_document_cli_" + std::to_string(::getpid()));
-        fs::remove_all(p);
-        fs::create_directories(p);
-        return p;
-    }();
-    return d;
-}
+using cli_scratch::write;
 
-void write(const fs::path& p, const std::string& s)
-{
-    std::ofstream o(p);
-    o << s;
-}
+fs::path workdir() { return cli_scratch::dir("fracdesign_gap_document_cli"); }
 
 // t,u,y: a first-order lag y' = -2 y + 3 u (Euler; the content only needs to be plausible).
 std::string csv(int rows)
@@ -68,14 +57,11 @@ Outcome run(const nlohmann::json& model, const std::string& tag)
     write(d / (tag + ".json"), model.dump());
     write(d / "data.csv", csv(600));
     const fs::path out = d / ("out_" + tag), err = d / ("err_" + tag);
-    const std::string cmd = std::string(FRACDESIGN_EXE) + " gap --model " + (d / (tag + ".json")).string() + " --data " +
-                            (d / "data.csv").string() + " --effects gain_error,sensor_offset --out " + out.string() +
-                            " > /dev/null 2> " + err.string();
-    const int rc = std::system(cmd.c_str());
-    std::ifstream in(err);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return {rc, ss.str(), out};
+    const cli_scratch::Outcome r =
+        cli_scratch::run(std::string(FRACDESIGN_EXE) + " gap --model " + (d / (tag + ".json")).string() + " --data " +
+                             (d / "data.csv").string() + " --effects gain_error,sensor_offset --out " + out.string(),
+                         err);
+    return {r.status, r.err, out};
 }
 
 // One line naming each of `words` (the field, the value, what is allowed).
