@@ -81,6 +81,22 @@ ReplaySetup make_replay_setup(const NominalModel& m, const Signals& data, const 
     s.measured.resize(N, Eigen::Index(outputs.size()));
     for (size_t c = 0; c < outputs.size(); ++c) s.measured.col(Eigen::Index(c)) = data.col(outputs[c]);
     if (s.compared.empty()) throw std::runtime_error("model/data mismatch: no model output is a column of " + data.source);
+    for (const NominalModel::OutputHold& h : m.holds) {
+        int phase = h.phase;
+        if (phase < 0) {
+            phase = 0;
+            const std::string& name = m.outputs[size_t(h.output)];
+            if (data.has(name)) {
+                const Eigen::VectorXd y = data.col(name);
+                std::vector<long> changes(size_t(h.every), 0);
+                for (Eigen::Index k = 1; k < y.size(); ++k)
+                    if (y(k) != y(k - 1)) ++changes[size_t(k % h.every)];
+                for (int p = 1; p < h.every; ++p)
+                    if (changes[size_t(p)] > changes[size_t(phase)]) phase = p;
+            }
+        }
+        s.hold_phase.push_back(phase);
+    }
     s.x0 = initial_state(m, s, data, outputs);
     if (m.closed_loop) {
         // The controller at the first sample: first references, measured outputs of x0.
@@ -287,7 +303,10 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     History h_out, h_in, h_ctl;
     const int nr = m.closed_loop ? int(m.loop.references.size()) : 0;
 
-    auto plant_outputs = [&](bool with_d) {
+    // gap.output_hold: a held output's stream is its sample output's (through the held
+    // channel's own effects); between readings it repeats its last reading.
+    std::vector<double> held_sens(m.holds.size(), 0.0), held_raw(m.holds.size(), 0.0);
+    auto plant_outputs = [&](bool with_d, Eigen::Index k) {
         for (int i = 0; i < ny; ++i) {
             double acc = 0;
             for (int j = 0; j < nx; ++j) acc += m.C(i, j) * x[size_t(j)];
@@ -295,6 +314,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
                 for (int j = 0; j < nu; ++j) acc += m.D(i, j) * up[size_t(j)];
             ytrue[size_t(i)] = acc + mode_gain[size_t(i)] * eta[1] / mode_w;
         }
+        for (const NominalModel::OutputHold& h : m.holds) ytrue[size_t(h.output)] = ytrue[size_t(h.sample)];
         if (h_out.len == 0) h_out.init(ny, dout_max + 2, ytrue.data());
         h_out.push(ytrue.data());
         for (int i = 0; i < ny; ++i) {
@@ -304,6 +324,16 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
             yraw[size_t(i)] = y;
             if (step[size_t(i)] > 0) y = step[size_t(i)] * std::round(y / step[size_t(i)]);
             ysens[size_t(i)] = y;
+        }
+        for (size_t j = 0; j < m.holds.size(); ++j) {
+            const NominalModel::OutputHold& h = m.holds[j];
+            const size_t o = size_t(h.output);
+            if (k == 0 || (k - s.hold_phase[j]) % h.every == 0) {
+                held_sens[j] = ysens[o];
+                held_raw[j] = yraw[o];
+            }
+            ysens[o] = held_sens[j];
+            yraw[o] = held_raw[j];
         }
     };
     auto input_path = [&](double v) {
@@ -358,7 +388,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
         double v = 0;
         for (int j = 0; j < nx; ++j) v += cv[size_t(j)] * x[size_t(j)];
         if (m.closed_loop) {
-            plant_outputs(false);
+            plant_outputs(false, k);
             for (int j = 0; j < nr; ++j) rk[size_t(j)] = s.exo(k, j);
             for (size_t j = 0; j < ym.size(); ++j) ym[j] = ysens[size_t(m.loop.measured[j])];
             ctl->step(rk.data(), ym.data(), cvec.data());
@@ -377,7 +407,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
                 u[size_t(i)] = m.limit_input(size_t(i), s.exo(k, i));
             if (k == 0) bl_out = gain * u[size_t(fi)];
             input_path(v);
-            plant_outputs(true);
+            plant_outputs(true, k);
         }
         for (int c = 0; c < ncmp; ++c) {
             const size_t i = size_t(s.compared[size_t(c)]);
