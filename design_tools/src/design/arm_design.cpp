@@ -660,6 +660,12 @@ nlohmann::json arm_gap_nominal_closed(const ArmDocument& a, const std::string& t
     rate.head(n) = m.C.row(2);
     std::vector<std::string> states = m.states;
     states.push_back("torque_actual");
+    // Friction acts on the shaft itself, not through the current loop and the ramp: the second input
+    // friction_torque (gap.friction_input) is a torque on the motor held over the cycle, column G0
+    // (zero-order hold); zero in the record and from ArmCtrl.
+    B.conservativeResize(n + 1, 2);
+    B.col(1).setZero();
+    B.block(0, 1, n, 1) = G0;
     const ImuReadingRow imu = append_imu_reading(a, rate, A, B, states);
     // The replay holds the reading exactly (gap.output_hold: imu_rate reads imu_rate_sample every h
     // cycles at the record's phase and repeats it in between, as ArmCtrl received it); the LTI row of
@@ -691,14 +697,15 @@ nlohmann::json arm_gap_nominal_closed(const ArmDocument& a, const std::string& t
             {"A", mat(A)},
             {"B", mat(B)},
             {"C", mat(C)},
-            {"D", mat(Eigen::MatrixXd::Zero(4, 1))},
-            {"inputs", {"torque_cmd"}},
+            {"D", mat(Eigen::MatrixXd::Zero(4, 2))},
+            {"inputs", {"torque_cmd", "friction_torque"}},
             {"outputs", {"motor_angle", "motor_velocity", "imu_rate", "imu_rate_sample"}},
             {"states", states},
             {"gap", {{"velocity", "motor_velocity"},
                      {"force_input", "torque_cmd"},
+                     {"friction_input", "friction_torque"},
                      {"units", {{"torque_cmd", "N m"}, {"motor_angle", "rad"}, {"motor_velocity", "rad/s"}, {"imu_rate", "rad/s"},
-                                {"imu_rate_sample", "rad/s"}}},
+                                {"imu_rate_sample", "rad/s"}, {"friction_torque", "N m"}}},
                      {"closed_loop", {{"references", nlohmann::json::array()},
                                       {"measured", {"motor_angle", "motor_velocity", "imu_rate"}},
                                       {"controller", controller},

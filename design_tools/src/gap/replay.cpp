@@ -62,9 +62,10 @@ ReplaySetup make_replay_setup(const NominalModel& m, const Signals& data, const 
                                      " columns but the model has " + std::to_string(drive.size()) + " " + what);
         drive = inputs;
     }
-    for (const std::string& d : drive)
-        if (!data.has(d))
-            throw std::runtime_error("model/data mismatch: the model's " + what.substr(0, what.size() - 1) + " '" + d +
+    // A separate friction input (gap.friction_input) is zero in the record: no column needed.
+    for (size_t j = 0; j < drive.size(); ++j)
+        if (!data.has(drive[j]) && !(!m.closed_loop && int(j) == m.friction_input && m.friction_input != m.force_input))
+            throw std::runtime_error("model/data mismatch: the model's " + what.substr(0, what.size() - 1) + " '" + drive[j] +
                                      "' is not a column of " + data.source);
     std::vector<std::string> exo_names = drive;
     if (m.closed_loop)
@@ -192,7 +193,8 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
         for (int l = 0; l < nu; ++l)
             for (int i = 0; i < nx; ++i) cvB[size_t(l)] += m.C(m.velocity, i) * m.B(i, l);
     }
-    const double bv = cvB[size_t(fi)];
+    const int ffi = m.friction_input;
+    const double bv = cvB[size_t(ffi)];
     const double eps = s.eps_velocity;
     // Mode: eta'' + 2 zeta w eta' + w^2 eta = w^2 u, discretised with zero-order
     // hold; the outputs see g eta'/w, a resonance with no static gain (a static
@@ -381,7 +383,10 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
                 }
             }
         }
-        up[size_t(fi)] = a - f;
+        if (ffi == fi)
+            up[size_t(fi)] = a - f;
+        else
+            up[size_t(ffi)] -= f;
     };
 
     for (Eigen::Index k = 0; k < N; ++k) {
@@ -421,7 +426,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
                 tr.y(k, c) = m + (yraw[i] - std::min(std::max(yraw[i], m - h), m + h));
             }
         }
-        tr.u(k) = up[size_t(fi)];
+        tr.u(k) = up[size_t(fi)] + (ffi != fi ? up[size_t(ffi)] : 0.0);  // the net force: the actuator's less the friction
         tr.v(k) = v;
         for (int i = 0; i < nx; ++i) {
             double acc = 0;

@@ -102,7 +102,12 @@ struct NominalModel {
     bool closed_loop = false;
     ClosedLoop loop;
     int velocity = -1;     // model output used as the friction velocity (-1: none)
-    int force_input = 0;   // plant input where friction, dead zone, backlash, gain and saturation act
+    int force_input = 0;   // plant input where dead zone, backlash, gain and saturation act
+    // Plant input where friction acts (gap.friction_input; default force_input): a torque
+    // on the moving part held over the sample, e.g. where the actuator's own dynamics (a
+    // current loop, a torque ramp) lie between force_input and the shaft. Zero in the
+    // record (open loop: need not be a column) and from the controller (closed loop).
+    int friction_input = 0;
     std::vector<Coupling> couplings;  // gap.coupling (none, one or several springs / flexible modes)
     std::map<std::string, std::string> units;  // gap.units: signal name -> unit (optional, for the report)
 
