@@ -5,7 +5,8 @@
 #   2. controller: ArmCtrl from that table in the B&R task-model runtime (lockstep)
 #   3. HIL rig: controller, drive, IMU and arm plant exchanging CAN frames, with an effect
 #      withheld from the design: Coulomb friction on the motor
-#   4. gap diagnosis: the document's nominal against the recorded run -> verdict and report
+#   4. gap diagnosis: the document's closed-loop nominal (ArmCtrl from the same table, replayed by
+#      gap-plc in the task runtime) against the recorded run -> verdict and report
 # The move reverses twice and ends slowly, so the friction the design did not know shows.
 # FRAC_DEMO_ARM picks another arm document (default docs/examples/arm_b/arm.json).
 set -uo pipefail
@@ -17,14 +18,15 @@ move=${FRAC_DEMO_MOVE:-0:1.0@0.8+1.2,0.4@2.1+0.7,0.6@2.9+0.6}
 rm -rf "$out"; mkdir -p "$out"
 fd=$build/design_tools/fracdesign
 bench=$build/hil/hil_bench
+gapplc=$build/bench/gap-plc
 py=/usr/bin/python3
 stage() { printf '\n== %s\n' "$*"; }
 run() { echo "\$ $*" >&2; "$@"; }
-for x in "$fd" "$bench"; do [ -x "$x" ] || { echo "demo: $x is not built"; exit 1; }; done
+for x in "$fd" "$bench" "$gapplc"; do [ -x "$x" ] || { echo "demo: $x is not built"; exit 1; }; done
 
 stage "1/4 design from the arm document $arm"
 cd "$out" || exit 1
-run "$fd" model --arm "$arm" --save-plant plant.bin --gap-nominal nominal.json \
+run "$fd" model --arm "$arm" --save-plant plant.bin --gap-nominal nominal.json --closed-loop ctrl.bin \
   --save-scenario scenario.txt --plant-table plant.bin --ctrl-table ctrl.bin --duration 4.0 || exit 1
 run "$fd" lqg --arm "$arm" --out lqg.json | grep -E "^LQG|closed loop on the unreduced" || exit 1
 run "$fd" armctrl --arm "$arm" --move "$move" --post 0.5 --out ctrl.bin || exit 1
@@ -44,8 +46,25 @@ print("tip tracking error: rms %.3g mrad, peak %.3g mrad; torque %.2f .. %.2f N 
 EOF
 echo "frames: $(wc -l < hil/frames.log) CAN frames in $out/hil/frames.log (candump format)"
 
-stage "4/4 gap diagnosis of the recorded run against the arm's nominal"
-run "$fd" gap --model nominal.json --data hil/signals.csv --out gap > gap.txt || { echo "demo: gap failed"; exit 1; }
+stage "4/4 gap diagnosis of the recorded run, ArmCtrl in the replay (gap-plc)"
+# The rig's CSV does not log when the PLC's tasks start (the controller node starts them once the
+# drive is enabled and an IMU reading came): the record gets a column `run`, 1 from the first sample
+# whose command is nonzero, and the nominal maps it to ArmCtrl's Run.
+$py - hil/signals.csv hil/record.csv nominal.json <<'EOF'
+import csv, json, sys
+rows = list(csv.reader(open(sys.argv[1])))
+k = rows[0].index("torque_cmd")
+first = next(i for i, r in enumerate(rows[1:]) if float(r[k]) != 0.0)
+w = csv.writer(open(sys.argv[2], "w"))
+w.writerow(rows[0] + ["run"])
+for i, r in enumerate(rows[1:]):
+    w.writerow(r + ["1" if i >= first else "0"])
+n = json.load(open(sys.argv[3]))
+n["gap"]["closed_loop"]["references"] = ["run"]
+n["gap"]["closed_loop"]["controller"]["inputs"]["Run"] = "run"
+json.dump(n, open(sys.argv[3], "w"), indent=1)
+EOF
+run "$gapplc" --model nominal.json --data hil/record.csv --out gap > gap.txt || { echo "demo: gap-plc failed"; exit 1; }
 verdict=$($py -c 'import json,sys; v=json.load(open(sys.argv[1]))["verdict"]
 print(" + ".join(v["effects"]) + ": " + ", ".join("%s = %.4g" % (k, x) for k, x in v["params"].items()) + "; held-out gap shrink %.1f %%" % (100 * v["shrink"]))' gap/result.json)
 echo "verdict:  $verdict"

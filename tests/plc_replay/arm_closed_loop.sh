@@ -21,8 +21,9 @@ rated=$(sed -n 's/^drive.torque_rated = //p' scenario.txt)
 fc=$($py -c "print(0.1 * float('$rated'))")
 "$bench" --scenario scenario.txt --out clean > /dev/null
 "$bench" --scenario scenario.txt --set imu.gyro_noise=0 --out quiet > /dev/null
-# Coulomb withheld: under the lowered limit the friction makes the loop ride it most of the record and
-# no candidate explains it (held-out gap 0.73, verdict none: docs/gap.md); the unlimited table instead
+# Coulomb withheld: under the lowered limit the friction makes the loop ride it for 71 % of the record and
+# the replay's gap is within 10 % of its value at Fc = 6 only for Fc in 5.95 .. 6.05 N m: no start of the
+# fit reaches it (verdict none or Fc 0.6, docs/gap.md); the unlimited table instead
 "$bench" --scenario scenario.txt --set ctrl.table=ctrl_free.bin --set plant.fric_b0="$fc" --out coulomb > /dev/null
 # The rig's CSV does not log when the PLC's tasks start (the controller node starts them once the drive is
 # enabled and an IMU reading came): the records get a column `run`, 1 from the first sample whose command
@@ -74,4 +75,4 @@ refuse truncated "ParTable refuses the data object" "$gapplc" --model nominal_cu
 refuse ts_mismatch "cycle time 'ts' = 0.002 s is not the record's sample time" "$gapplc" --model nominal_ts.json --data clean/record.csv
 refuse unknown_column "reference 'enable' is not a column" "$gapplc" --model nominal_column.json --data clean/record.csv
 refuse fracdesign_gap "run the same command with gap-plc" "$fd" gap --model nominal_run.json --data clean/record.csv
-$py "$here/arm_closed_loop_check.py" . "$limit"
+$py "$here/arm_closed_loop_check.py" . "$limit" "$fc"

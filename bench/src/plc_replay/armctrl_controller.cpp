@@ -30,6 +30,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
@@ -203,6 +204,8 @@ public:
         for (int i = 0; i < outputs_; ++i) u[i] = i == output_ ? tau : 0.0;
     }
     double output_limit() const override { return limit_; }
+    // ArmCtrl computes in REAL (float), as on the PLC.
+    double arithmetic_epsilon() const override { return double(std::numeric_limits<float>::epsilon()); }
 
 private:
     void boot()

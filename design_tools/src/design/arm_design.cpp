@@ -540,6 +540,48 @@ tables::ParamTable arm_plant_table_for(const ArmDocument& a, double h)
 
 int arm_imu_reading_cycles(const ArmDocument& a) { return 2 * std::max(1, a.dout - 1); }
 
+namespace {
+
+// The rig's IMU reading of the link rate, one model for every gap nominal of the arm (open and closed loop).
+// The reading (hil/imu.c, r = arm_imu_reading_cycles acquisitions at T/2 between samples, sent r
+// acquisitions later) is psi'(t_{k-q}) with the age q = h .. 2h - 1 cycles, h = r/2, running through
+// the hold (measured on the rig: imu_rate[k] equals tip_velocity[k - q] to the gyro's wire step).
+// Periodically time-varying for h > 1; the LTI map nearest to it for every input is the mean over
+// the phases, imu_rate[k] = (1/h) sum_{q=h}^{2h-1} psi'(t_{k-q}) (mean age (3h - 1)/2 cycles).
+// The discrete plant (A, B) of n0 states, whose link rate at t_k is rate_row x[k], gets the states
+// imu_past[q][k] = psi'(t_{k-q}), q = 1 .. L = 2h - 1 (imu_past[1][k+1] = rate_row x[k],
+// imu_past[q+1][k+1] = imu_past[q][k]); returns the output row of the mean reading over the enlarged
+// state and appends the states' names.
+struct ImuReadingRow {
+    Eigen::RowVectorXd mean;    // (1/h) sum_{q=h}^{2h-1} imu_past[q]
+    Eigen::RowVectorXd sample;  // imu_past[h]: the reading as it arrives (its youngest age)
+    Eigen::Index h;           // cycles between readings (and the youngest age)
+    std::string ages;         // the ages in words, for the nominal's description
+};
+
+ImuReadingRow append_imu_reading(const ArmDocument& a, const Eigen::RowVectorXd& rate_row, Eigen::MatrixXd& A, Eigen::MatrixXd& B,
+                                 std::vector<std::string>& states)
+{
+    const Eigen::Index n0 = A.rows(), h = arm_imu_reading_cycles(a) / 2, L = 2 * h - 1, N = n0 + L;
+    Eigen::MatrixXd A2 = Eigen::MatrixXd::Zero(N, N), B2 = Eigen::MatrixXd::Zero(N, B.cols());
+    A2.topLeftCorner(n0, n0) = A;
+    B2.topRows(n0) = B;
+    A2.block(n0, 0, 1, n0) = rate_row;
+    for (Eigen::Index q = 1; q < L; ++q) A2(n0 + q, n0 + q - 1) = 1.0;
+    A = A2;
+    B = B2;
+    ImuReadingRow r;
+    r.h = h;
+    r.mean = Eigen::RowVectorXd::Zero(N);
+    for (Eigen::Index q = h; q <= L; ++q) r.mean(n0 + q - 1) = 1.0 / static_cast<double>(h);
+    r.sample = Eigen::RowVectorXd::Unit(N, n0 + h - 1);
+    for (Eigen::Index q = 1; q <= L; ++q) states.push_back("imu_past[" + std::to_string(q) + "]");
+    r.ages = h == 1 ? "1 cycle old" : "the mean of psi' " + std::to_string(h) + " .. " + std::to_string(L) + " cycles old";
+    return r;
+}
+
+}  // namespace
+
 nlohmann::json arm_gap_nominal(const ArmDocument& a)
 {
     const ArmBuild b = build_arm_from_document(a, a.design.N, false, {});
@@ -551,26 +593,21 @@ nlohmann::json arm_gap_nominal(const ArmDocument& a)
     // torque_actual[k] (hil/drive.c, RIG_TORQUE): first-order hold, exact, with the previous torque as a
     // state. motor_velocity[k] = theta_M'(t_k) (the drive's TPDO at SYNC k).
     const FohDiscretisation d = c2d_foh(m, a.T);
-    // The IMU reading (hil/imu.c, r = arm_imu_reading_cycles acquisitions at T/2 between samples, sent r
-    // acquisitions later) is psi'(t_{k-q}) with the age q = h .. 2h - 1 cycles, h = r/2, running through
-    // the hold (measured on the rig: imu_rate[k] equals tip_velocity[k - q] to the gyro's wire step).
-    // Periodically time-varying for h > 1; the LTI map nearest to it for every input is the mean over
-    // the phases, imu_rate[k] = (1/h) sum_{q=h}^{2h-1} psi'(t_{k-q}) (mean age (3h - 1)/2 cycles).
-    const Eigen::Index n = d.Ad.rows(), h = arm_imu_reading_cycles(a) / 2, L = 2 * h - 1, N = n + 1 + L;
-    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(N, N), B = Eigen::MatrixXd::Zero(N, 1), C = Eigen::MatrixXd::Zero(2, N);
+    const Eigen::Index n = d.Ad.rows();
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n + 1, n + 1), B = Eigen::MatrixXd::Zero(n + 1, 1);
     A.topLeftCorner(n, n) = d.Ad;
     A.block(0, n, n, 1) = d.B_prev;
     B.topRows(n) = d.B_now;
     B(n, 0) = 1.0;  // torque_prev[k+1] = torque_actual[k]
-    // imu_past[q][k] = psi'(t_{k-q}): imu_past[1][k+1] = C_imu x[k], imu_past[q+1][k+1] = imu_past[q][k]
-    A.block(n + 1, 0, 1, n) = m.C.row(1);
-    for (Eigen::Index q = 1; q < L; ++q) A(n + 1 + q, n + q) = 1.0;
-    C.block(0, 0, 1, n) = m.C.row(0);
-    for (Eigen::Index q = h; q <= L; ++q) C(1, n + q) = 1.0 / static_cast<double>(h);
+    Eigen::RowVectorXd rate = Eigen::RowVectorXd::Zero(n + 1);
+    rate.head(n) = m.C.row(1);
     std::vector<std::string> states = m.states;
     states.push_back("torque_prev");
-    for (Eigen::Index q = 1; q <= L; ++q) states.push_back("imu_past[" + std::to_string(q) + "]");
-    const std::string ages = h == 1 ? "1 cycle" : "the mean of psi' " + std::to_string(h) + " .. " + std::to_string(L) + " cycles old";
+    const ImuReadingRow imu = append_imu_reading(a, rate, A, B, states);
+    Eigen::MatrixXd C = Eigen::MatrixXd::Zero(2, A.rows());
+    C.block(0, 0, 1, n) = m.C.row(0);
+    C.row(1) = imu.mean;
+    const std::string hs = std::to_string(imu.h);
     return {{"schema", "frac.model"},
             {"version", 1},
             {"kind", "statespace"},
@@ -579,7 +616,7 @@ nlohmann::json arm_gap_nominal(const ArmDocument& a)
                                 std::to_string(b.beam.N) + ", " + std::to_string(n) + " states) the controller was designed and checked on, "
                                 "open loop from the drive's torque_actual to motor_velocity and imu_rate, first-order hold at T "
                                 "(the drive's torque ramps from the previous torque_actual to this one, state torque_prev), imu_rate " +
-                                ages + " (the rig's IMU reading every " + std::to_string(h) + " cycles, sent " + std::to_string(h) +
+                                imu.ages + " (the rig's IMU reading every " + hs + " cycles, sent " + hs +
                                 " cycles after its sample, as an LTI map), no friction"},
             {"time", "discrete"},
             {"Ts", a.T},
@@ -612,31 +649,40 @@ nlohmann::json arm_gap_nominal_closed(const ArmDocument& a, const std::string& t
     const Eigen::MatrixXd Phi = E.topLeftCorner(n, n);
     const Eigen::VectorXd G0 = E.block(0, n, n, 1), G1 = E.block(0, n + 1, n, 1) / a.T;
     const double e = a.current_tau > 0.0 ? std::exp(-a.T / a.current_tau) : 0.0;
-    // states [x; tau_a; IMU delay chain (7.14)-(7.15)]
-    const Eigen::Index nd = a.dout, N = n + 1 + nd;
-    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(N, N), B = Eigen::MatrixXd::Zero(N, 1), C = Eigen::MatrixXd::Zero(3, N);
+    // states [x; tau_a; the IMU reading's chain (append_imu_reading)]
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n + 1, n + 1), B = Eigen::MatrixXd::Zero(n + 1, 1);
     A.topLeftCorner(n, n) = Phi;
     A.block(0, n, n, 1) = G0 + G1 * (e - 1.0);
     B.topRows(n) = G1 * (1.0 - e);
     A(n, n) = e;
     B(n, 0) = 1.0 - e;
-    C.block(0, 0, 2, n) = m.C.topRows(2);
-    if (nd > 0) {
-        A.block(n + nd, 0, 1, n) = m.C.row(2);
-        for (Eigen::Index j = 0; j + 1 < nd; ++j) A(n + 1 + j, n + 2 + j) = 1.0;
-        C(2, n + 1) = 1.0;
-    } else {
-        C.block(2, 0, 1, n) = m.C.row(2);
-    }
+    Eigen::RowVectorXd rate = Eigen::RowVectorXd::Zero(n + 1);
+    rate.head(n) = m.C.row(2);
     std::vector<std::string> states = m.states;
     states.push_back("torque_actual");
-    for (Eigen::Index j = 0; j < nd; ++j) states.push_back("imu_delay[" + std::to_string(j + 1) + "]");
+    // Friction acts on the shaft itself, not through the current loop and the ramp: the second input
+    // friction_torque (gap.friction_input) is a torque on the motor held over the cycle, column G0
+    // (zero-order hold); zero in the record and from ArmCtrl.
+    B.conservativeResize(n + 1, 2);
+    B.col(1).setZero();
+    B.block(0, 1, n, 1) = G0;
+    const ImuReadingRow imu = append_imu_reading(a, rate, A, B, states);
+    // The replay holds the reading exactly (gap.output_hold: imu_rate reads imu_rate_sample every h
+    // cycles at the record's phase and repeats it in between, as ArmCtrl received it); the LTI row of
+    // imu_rate, the mean over the phases, is what the nominal's modes and small-signal checks see.
+    Eigen::MatrixXd C = Eigen::MatrixXd::Zero(4, A.rows());
+    C.block(0, 0, 2, n) = m.C.topRows(2);
+    C.row(2) = imu.mean;
+    C.row(3) = imu.sample;
+    nlohmann::json hold = nlohmann::json::object();
+    if (imu.h > 1) hold["imu_rate"] = {{"every", imu.h}, {"sample", "imu_rate_sample"}};
+    const std::string hs = std::to_string(imu.h);
     const nlohmann::json controller = {
         {"kind", "armctrl"},
         {"table", table},
         {"inputs", {{"MotorAngle", "motor_angle"}, {"MotorVelocity", "motor_velocity"}, {"TipRate", "imu_rate"}}},
         {"output", "torque_cmd"}};
-    return {{"schema", "frac.model"},
+    nlohmann::json doc = {{"schema", "frac.model"},
             {"version", 1},
             {"kind", "statespace"},
             {"name", "arm_closed_loop_" + a.name},
@@ -644,24 +690,29 @@ nlohmann::json arm_gap_nominal_closed(const ArmDocument& a, const std::string& t
                             "ArmCtrl from the table '" + table + "' (replayed by gap-plc in the task runtime) on the full arm (N = " +
                                 std::to_string(b.beam.N) + ", " + std::to_string(n) + " states), the drive's delay d_i = " +
                                 std::to_string(a.di) + " cycles, peak torque limit, current loop (tau_c = " + fmt(a.current_tau) +
-                                " s) and first-order hold to the shaft; IMU delayed d_o = " + std::to_string(nd) + " samples; no friction"},
+                                " s) and first-order hold to the shaft; imu_rate " + imu.ages + " (the rig's IMU reading every " + hs +
+                                " cycles, sent " + hs + " cycles after its sample, as an LTI map); no friction"},
             {"time", "discrete"},
             {"Ts", a.T},
             {"A", mat(A)},
             {"B", mat(B)},
             {"C", mat(C)},
-            {"D", mat(Eigen::MatrixXd::Zero(3, 1))},
-            {"inputs", {"torque_cmd"}},
-            {"outputs", {"motor_angle", "motor_velocity", "imu_rate"}},
+            {"D", mat(Eigen::MatrixXd::Zero(4, 2))},
+            {"inputs", {"torque_cmd", "friction_torque"}},
+            {"outputs", {"motor_angle", "motor_velocity", "imu_rate", "imu_rate_sample"}},
             {"states", states},
             {"gap", {{"velocity", "motor_velocity"},
                      {"force_input", "torque_cmd"},
-                     {"units", {{"torque_cmd", "N m"}, {"motor_angle", "rad"}, {"motor_velocity", "rad/s"}, {"imu_rate", "rad/s"}}},
+                     {"friction_input", "friction_torque"},
+                     {"units", {{"torque_cmd", "N m"}, {"motor_angle", "rad"}, {"motor_velocity", "rad/s"}, {"imu_rate", "rad/s"},
+                                {"imu_rate_sample", "rad/s"}, {"friction_torque", "N m"}}},
                      {"closed_loop", {{"references", nlohmann::json::array()},
                                       {"measured", {"motor_angle", "motor_velocity", "imu_rate"}},
                                       {"controller", controller},
                                       {"delay_samples", a.di},
                                       {"saturation", a.torque_peak}}}}}};
+    if (!hold.empty()) doc["gap"]["output_hold"] = hold;
+    return doc;
 }
 
 std::string arm_hil_scenario(const ArmDocument& a, const std::string& plant_table, const std::string& ctrl_table, double duration)

@@ -79,7 +79,13 @@ FitOutcome refine(FitProblem& P, const std::vector<double>& theta0, int max_iter
     std::vector<double> x;
     for (int i : P.free_idx) x.push_back(theta0[size_t(i)]);
     ceres::Problem problem;
-    auto* cf = new ceres::DynamicNumericDiffCostFunction<ReplayCost, ceres::FORWARD>(new ReplayCost{&P});
+    // Forward differences of relative step 1e-6 (Ceres' default), at least
+    // sqrt(eps) of a closed loop's controller arithmetic (controller.hpp).
+    ceres::NumericDiffOptions nd;
+    const NominalModel& nm = *P.setup->model;
+    if (nm.closed_loop && nm.loop.controller)
+        nd.relative_step_size = std::max(nd.relative_step_size, std::sqrt(nm.loop.controller->arithmetic_epsilon()));
+    auto* cf = new ceres::DynamicNumericDiffCostFunction<ReplayCost, ceres::FORWARD>(new ReplayCost{&P}, ceres::TAKE_OWNERSHIP, nd);
     cf->AddParameterBlock(int(x.size()));
     cf->SetNumResiduals(int(P.y.size()));
     problem.AddResidualBlock(cf, nullptr, x.data());

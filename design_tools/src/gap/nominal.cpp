@@ -146,6 +146,16 @@ NominalModel nominal_from_json(const json& doc, double Ts, const std::string& ba
             if (m.inputs[i] == f) m.force_input = int(i);
         if (m.force_input < 0) throw std::runtime_error("model: gap.force_input names no model input");
     }
+    m.friction_input = m.force_input;
+    if (g.contains("friction_input")) {
+        const json& f = g.at("friction_input");
+        m.friction_input = -1;
+        for (size_t i = 0; f.is_string() && i < m.inputs.size(); ++i)
+            if (m.inputs[i] == f.get<std::string>()) m.friction_input = int(i);
+        if (m.friction_input < 0)
+            throw std::runtime_error("model gap.friction_input: is " + f.dump() + ", must be the name of a model input (the torque "
+                                     "on the moving part, zero in the record and from the controller)");
+    }
     if (g.contains("units")) {
         // gap.units: {"signal": "unit"} for the report and the parameters' units.
         const json& u = g.at("units");

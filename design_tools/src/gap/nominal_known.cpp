@@ -1,7 +1,8 @@
 // nominal_known.cpp - what the nominal model document states beyond the
 // plant's equations (nominal.hpp, docs/gap.md "What the document states"):
 // a fractional plant's realization, the open-loop input delay, the initial
-// state, the sensors' noise and the actuator's limits.
+// state, the sensors' noise, the actuator's limits and the sensors read
+// less often than every sample (output_hold).
 #include "fracdesign/gap/nominal.hpp"
 
 #include "fracdesign/model_json.hpp"
@@ -147,6 +148,42 @@ void read_known_section(const json& g, double plant_delay_s, NominalModel& m)
             const double sd = finite_number(it.value(), "noise." + it.key(), "a finite noise std > 0 in the output's units");
             if (!(sd > 0)) refuse("noise." + it.key(), it.value(), "a finite noise std > 0 in the output's units");
             m.noise[it.key()] = sd;
+        }
+    }
+    if (g.contains("output_hold")) {
+        const json& v = g.at("output_hold");
+        if (!v.is_object() || v.empty())
+            refuse("output_hold", v, "an object {\"output\": {\"every\": n >= 2, \"sample\": model output, \"phase\": 0 .. n - 1}}");
+        for (auto it = v.begin(); it != v.end(); ++it) {
+            const std::string f = "output_hold." + it.key();
+            NominalModel::OutputHold h;
+            h.output = m.output_index(it.key());
+            if (h.output < 0) refuse(f, it.value(), "left out: '" + it.key() + "' is no model output");
+            const json& o = it.value();
+            if (!o.is_object()) refuse(f, o, "an object {\"every\": n >= 2, \"sample\": model output, \"phase\": 0 .. n - 1}");
+            for (auto k = o.begin(); k != o.end(); ++k)
+                if (k.key() != "every" && k.key() != "sample" && k.key() != "phase")
+                    refuse(f + "." + k.key(), k.value(), "left out (allowed: every, sample, phase)");
+            if (!o.contains("every")) refuse(f, o, "an object with \"every\": the samples per reading, an integer >= 2");
+            const json& e = o.at("every");
+            if (!e.is_number_integer() || e.get<long>() < 2 || e.get<long>() > 1000000)
+                refuse(f + ".every", e, "the samples per reading, an integer in [2, 1e6]");
+            h.every = int(e.get<long>());
+            h.sample = h.output;
+            if (o.contains("sample")) {
+                const json& s = o.at("sample");
+                if (!s.is_string() || m.output_index(s.get<std::string>()) < 0)
+                    refuse(f + ".sample", s, "the name of the model output the reading takes");
+                h.sample = m.output_index(s.get<std::string>());
+            }
+            if (o.contains("phase")) {
+                const json& ph = o.at("phase");
+                if (!ph.is_number_integer() || ph.get<long>() < 0 || ph.get<long>() >= h.every)
+                    refuse(f + ".phase", ph, "the first sample of a reading modulo every, an integer in [0, " +
+                                                 std::to_string(h.every - 1) + "] (left out: from the record)");
+                h.phase = int(ph.get<long>());
+            }
+            m.holds.push_back(h);
         }
     }
     if (g.contains("input_limits")) {

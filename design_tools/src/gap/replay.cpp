@@ -62,9 +62,10 @@ ReplaySetup make_replay_setup(const NominalModel& m, const Signals& data, const 
                                      " columns but the model has " + std::to_string(drive.size()) + " " + what);
         drive = inputs;
     }
-    for (const std::string& d : drive)
-        if (!data.has(d))
-            throw std::runtime_error("model/data mismatch: the model's " + what.substr(0, what.size() - 1) + " '" + d +
+    // A separate friction input (gap.friction_input) is zero in the record: no column needed.
+    for (size_t j = 0; j < drive.size(); ++j)
+        if (!data.has(drive[j]) && !(!m.closed_loop && int(j) == m.friction_input && m.friction_input != m.force_input))
+            throw std::runtime_error("model/data mismatch: the model's " + what.substr(0, what.size() - 1) + " '" + drive[j] +
                                      "' is not a column of " + data.source);
     std::vector<std::string> exo_names = drive;
     if (m.closed_loop)
@@ -81,6 +82,22 @@ ReplaySetup make_replay_setup(const NominalModel& m, const Signals& data, const 
     s.measured.resize(N, Eigen::Index(outputs.size()));
     for (size_t c = 0; c < outputs.size(); ++c) s.measured.col(Eigen::Index(c)) = data.col(outputs[c]);
     if (s.compared.empty()) throw std::runtime_error("model/data mismatch: no model output is a column of " + data.source);
+    for (const NominalModel::OutputHold& h : m.holds) {
+        int phase = h.phase;
+        if (phase < 0) {
+            phase = 0;
+            const std::string& name = m.outputs[size_t(h.output)];
+            if (data.has(name)) {
+                const Eigen::VectorXd y = data.col(name);
+                std::vector<long> changes(size_t(h.every), 0);
+                for (Eigen::Index k = 1; k < y.size(); ++k)
+                    if (y(k) != y(k - 1)) ++changes[size_t(k % h.every)];
+                for (int p = 1; p < h.every; ++p)
+                    if (changes[size_t(p)] > changes[size_t(phase)]) phase = p;
+            }
+        }
+        s.hold_phase.push_back(phase);
+    }
     s.x0 = initial_state(m, s, data, outputs);
     if (m.closed_loop) {
         // The controller at the first sample: first references, measured outputs of x0.
@@ -176,7 +193,8 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
         for (int l = 0; l < nu; ++l)
             for (int i = 0; i < nx; ++i) cvB[size_t(l)] += m.C(m.velocity, i) * m.B(i, l);
     }
-    const double bv = cvB[size_t(fi)];
+    const int ffi = m.friction_input;
+    const double bv = cvB[size_t(ffi)];
     const double eps = s.eps_velocity;
     // Mode: eta'' + 2 zeta w eta' + w^2 eta = w^2 u, discretised with zero-order
     // hold; the outputs see g eta'/w, a resonance with no static gain (a static
@@ -287,7 +305,10 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     History h_out, h_in, h_ctl;
     const int nr = m.closed_loop ? int(m.loop.references.size()) : 0;
 
-    auto plant_outputs = [&](bool with_d) {
+    // gap.output_hold: a held output's stream is its sample output's (through the held
+    // channel's own effects); between readings it repeats its last reading.
+    std::vector<double> held_sens(m.holds.size(), 0.0), held_raw(m.holds.size(), 0.0);
+    auto plant_outputs = [&](bool with_d, Eigen::Index k) {
         for (int i = 0; i < ny; ++i) {
             double acc = 0;
             for (int j = 0; j < nx; ++j) acc += m.C(i, j) * x[size_t(j)];
@@ -295,6 +316,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
                 for (int j = 0; j < nu; ++j) acc += m.D(i, j) * up[size_t(j)];
             ytrue[size_t(i)] = acc + mode_gain[size_t(i)] * eta[1] / mode_w;
         }
+        for (const NominalModel::OutputHold& h : m.holds) ytrue[size_t(h.output)] = ytrue[size_t(h.sample)];
         if (h_out.len == 0) h_out.init(ny, dout_max + 2, ytrue.data());
         h_out.push(ytrue.data());
         for (int i = 0; i < ny; ++i) {
@@ -304,6 +326,16 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
             yraw[size_t(i)] = y;
             if (step[size_t(i)] > 0) y = step[size_t(i)] * std::round(y / step[size_t(i)]);
             ysens[size_t(i)] = y;
+        }
+        for (size_t j = 0; j < m.holds.size(); ++j) {
+            const NominalModel::OutputHold& h = m.holds[j];
+            const size_t o = size_t(h.output);
+            if (k == 0 || (k - s.hold_phase[j]) % h.every == 0) {
+                held_sens[j] = ysens[o];
+                held_raw[j] = yraw[o];
+            }
+            ysens[o] = held_sens[j];
+            yraw[o] = held_raw[j];
         }
     };
     auto input_path = [&](double v) {
@@ -351,14 +383,17 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
                 }
             }
         }
-        up[size_t(fi)] = a - f;
+        if (ffi == fi)
+            up[size_t(fi)] = a - f;
+        else
+            up[size_t(ffi)] -= f;
     };
 
     for (Eigen::Index k = 0; k < N; ++k) {
         double v = 0;
         for (int j = 0; j < nx; ++j) v += cv[size_t(j)] * x[size_t(j)];
         if (m.closed_loop) {
-            plant_outputs(false);
+            plant_outputs(false, k);
             for (int j = 0; j < nr; ++j) rk[size_t(j)] = s.exo(k, j);
             for (size_t j = 0; j < ym.size(); ++j) ym[j] = ysens[size_t(m.loop.measured[j])];
             ctl->step(rk.data(), ym.data(), cvec.data());
@@ -377,7 +412,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
                 u[size_t(i)] = m.limit_input(size_t(i), s.exo(k, i));
             if (k == 0) bl_out = gain * u[size_t(fi)];
             input_path(v);
-            plant_outputs(true);
+            plant_outputs(true, k);
         }
         for (int c = 0; c < ncmp; ++c) {
             const size_t i = size_t(s.compared[size_t(c)]);
@@ -391,7 +426,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
                 tr.y(k, c) = m + (yraw[i] - std::min(std::max(yraw[i], m - h), m + h));
             }
         }
-        tr.u(k) = up[size_t(fi)];
+        tr.u(k) = up[size_t(fi)] + (ffi != fi ? up[size_t(ffi)] : 0.0);  // the net force: the actuator's less the friction
         tr.v(k) = v;
         for (int i = 0; i < nx; ++i) {
             double acc = 0;

@@ -108,13 +108,20 @@ FitContext fit_context(const Baseline& B, const Signals& data, const GapResult& 
         // White level: sigma_w = rms(r(k) - (r(k-1) + r(k+1))/2) / sqrt(1.5)
         // of the nominal residual (a quantization error of step q alone gives
         // sigma_w = q/sqrt(12)); the step is used when q >= 2 sigma_w, i.e.
-        // q >= 2.45 x the noise std.
+        // q >= 2.45 x the noise std. A held output (gap.output_hold) repeats
+        // each reading, its noise too: r is then taken at the readings only.
+        const NominalModel& model = *B.fit_setup.model;
+        Eigen::Index every = 1, phase = 0;
+        for (size_t j = 0; j < model.holds.size(); ++j)
+            if (model.holds[j].output == B.fit_setup.compared[c]) every = model.holds[j].every, phase = B.fit_setup.hold_phase[j];
         double hf = 0;
-        for (Eigen::Index k = 1; k + 1 < R.fit_samples; ++k) {
-            const double d = resn(k, Eigen::Index(c)) - 0.5 * (resn(k - 1, Eigen::Index(c)) + resn(k + 1, Eigen::Index(c)));
+        Eigen::Index nhf = 0;
+        for (Eigen::Index k = phase + every; k + every < R.fit_samples; k += every, ++nhf) {
+            const double d =
+                resn(k, Eigen::Index(c)) - 0.5 * (resn(k - every, Eigen::Index(c)) + resn(k + every, Eigen::Index(c)));
             hf += d * d;
         }
-        const double sigma_w = sigma[c] * std::sqrt(hf / double(std::max<Eigen::Index>(1, R.fit_samples - 2)) / 1.5);
+        const double sigma_w = sigma[c] * std::sqrt(hf / double(std::max<Eigen::Index>(1, nhf)) / 1.5);
         // And the data must lie on the lattice: rms distance to it below
         // q/10 (values off any lattice give q/sqrt(12) = 0.29 q).
         double off = 0;

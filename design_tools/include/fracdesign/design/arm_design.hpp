@@ -191,9 +191,12 @@ constexpr int kRigImuDoMin = 2, kRigImuDoMax = 5, kRigEncoderBitsMax = 20;
 // The closed-loop gap nominal: ArmCtrl from the parameter table `table` (a file name, relative to the
 // nominal document) as gap.closed_loop.controller kind "armctrl" (replayed by gap-plc, which runs the
 // program in the PLC task runtime; design_tools only names the table), inputs MotorAngle, MotorVelocity,
-// TipRate from the model outputs motor_angle, motor_velocity, imu_rate (IMU delayed d_o), output
-// torque_cmd; the drive as the rig's (hil/drive.h): delay d_i (delay_samples), peak torque
-// (saturation), current loop of tau_c as a state (torque_actual) and a first-order hold to the shaft.
+// TipRate from the model outputs motor_angle, motor_velocity, imu_rate, output torque_cmd; the drive as
+// the rig's (hil/drive.h): delay d_i (delay_samples), peak torque (saturation), current loop of tau_c
+// as a state (torque_actual) and a first-order hold to the shaft; the IMU as arm_gap_nominal's (its
+// reading's ages as states, imu_rate their phase mean) plus gap.output_hold: imu_rate reads
+// imu_rate_sample (h cycles old) every h cycles and holds it; friction on the shaft through the second
+// input friction_torque (gap.friction_input, zero-order hold).
 nlohmann::json arm_gap_nominal_closed(const ArmDocument& a, const std::string& table);
 
 // hil_bench scenario lines for the arm (T, plant = arm, drive delay/limits/current loop/encoder, IMU

@@ -58,6 +58,12 @@ public:
     // The largest |u_i| the controller can command (its output limits;
     // infinity when it has none): the scale of the saturation candidate.
     virtual double output_limit() const { return std::numeric_limits<double>::infinity(); }
+    // The relative precision of the law's arithmetic: a law computing in
+    // REAL (float, as the PLC's programs) returns FLT_EPSILON. The fits'
+    // numeric derivatives step the parameters by at least its square root
+    // (diagnosis.cpp refine): a smaller step moves the loop by less than the
+    // law's rounding, and the derivative is noise.
+    virtual double arithmetic_epsilon() const { return std::numeric_limits<double>::epsilon(); }
     // A discrete state space at Ts with inputs [r; y] and outputs u that
     // equals the law for small signals away from its limits (used for the
     // nominal's closed-loop modes); false when the kind has none.

@@ -174,6 +174,10 @@ struct ReplaySetup {
     // sensor's reading stands for its cell, so the quantization effect
     // compares the model with the cell around the reading (docs/gap.md).
     Eigen::MatrixXd measured;
+    // Phase of each gap.output_hold (model.holds): the document's, else the residue
+    // modulo `every` of the samples at which the record's column changes most often
+    // (a new reading), 0 when the output is no column or never changes.
+    std::vector<int> hold_phase;
     double eps_velocity = 1.0;         // sign(v) ~ tanh(v/eps) where the force input does not reach v in one step
     int fractional_memory = 256;       // Grunwald-Letnikov memory, samples (a coupling's: coupling_gl_memory)
 

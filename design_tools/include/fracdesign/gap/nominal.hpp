@@ -102,7 +102,12 @@ struct NominalModel {
     bool closed_loop = false;
     ClosedLoop loop;
     int velocity = -1;     // model output used as the friction velocity (-1: none)
-    int force_input = 0;   // plant input where friction, dead zone, backlash, gain and saturation act
+    int force_input = 0;   // plant input where dead zone, backlash, gain and saturation act
+    // Plant input where friction acts (gap.friction_input; default force_input): a torque
+    // on the moving part held over the sample, e.g. where the actuator's own dynamics (a
+    // current loop, a torque ramp) lie between force_input and the shaft. Zero in the
+    // record (open loop: need not be a column) and from the controller (closed loop).
+    int friction_input = 0;
     std::vector<Coupling> couplings;  // gap.coupling (none, one or several springs / flexible modes)
     std::map<std::string, std::string> units;  // gap.units: signal name -> unit (optional, for the report)
 
@@ -125,6 +130,14 @@ struct NominalModel {
         if (i < input_hi.size()) u = u > input_hi[i] ? input_hi[i] : u;
         return u;
     }
+    // gap.output_hold: a sensor read every `every` samples whose reading is held in between (e.g. an
+    // IMU reading every h PLC cycles): at the samples k with (k - phase) mod every = 0 the output
+    // `output` reads the model output `sample` (its effects applied: delay, offset, step), at the
+    // others it repeats its last reading. phase -1: taken from the record (make_replay_setup).
+    struct OutputHold {
+        int output = -1, sample = -1, every = 1, phase = -1;
+    };
+    std::vector<OutputHold> holds;
     std::string realization;  // a fractional plant's rational realization: band, order, accuracy ("" if rational)
 
     int output_index(const std::string& name) const;  // -1 if absent
@@ -154,7 +167,7 @@ NominalModel load_nominal_model(const std::string& path, double Ts, double recor
 // *realization. std::runtime_error naming the field on a bad document.
 StateSpace plant_state_space(const nlohmann::json& doc, double Ts, double record_seconds, double* delay_s,
                              std::string* realization);
-// Reads gap.input_delay, gap.initial_state, gap.noise and gap.input_limits
+// Reads gap.input_delay, gap.initial_state, gap.noise, gap.input_limits and gap.output_hold
 // into m (the plant already read), adding `plant_delay_s` (a foprocess's
 // dead time) to the input delay. Each bad value: std::runtime_error with
 // one line naming the field, the value and what is allowed.
