@@ -158,6 +158,8 @@ struct FitProblem {
         for (const EffectSetup& e : effects) {
             EffectInstance in{e.kind, {}, e.site, e.coupling};
             for (const ParamSpec& p : e.spec) in.params.push_back(p.scale * theta[k++]);
+            for (size_t j = 0; j < e.spec.size(); ++j)
+                if (e.spec[j].mirror >= 0) in.params[j] = -in.params[size_t(e.spec[j].mirror)];  // ParamSpec::mirror
             out.push_back(in);
         }
         return out;
@@ -213,7 +215,7 @@ FitOutcome refine(FitProblem& P, const std::vector<double>& theta0, int max_iter
     size_t k = 0;
     for (const EffectSetup& e : P.effects)
         for (const ParamSpec& p : e.spec) {
-            if (!p.fixed) P.free_idx.push_back(int(k));
+            if (!p.fixed && p.mirror < 0) P.free_idx.push_back(int(k));
             ++k;
         }
     P.base = theta0;
@@ -350,10 +352,14 @@ FitReport make_report(const FitProblem& P, const FitOutcome& o, const Evaluator&
     for (const EffectSetup& e : P.effects) {
         std::vector<double> sd;
         std::vector<std::string> why;
+        const size_t first = k;
         for (const ParamSpec& p : e.spec) {
-            sd.push_back(p.fixed ? kNaN : p.scale * o.stddev[k]);
-            why.push_back(p.fixed ? "" : unidentified_reason(o.theta[k], o.stddev[k], p));
-            r.fitted_params += 1;
+            // A mirrored parameter (ParamSpec::mirror) has the std and the identification of its source.
+            const size_t src = p.mirror >= 0 ? first + size_t(p.mirror) : k;
+            const ParamSpec& ps = e.spec[src - first];
+            sd.push_back(ps.fixed ? kNaN : ps.scale * o.stddev[src]);
+            why.push_back(ps.fixed ? "" : unidentified_reason(o.theta[src], o.stddev[src], ps));
+            if (p.mirror < 0) r.fitted_params += 1;
             ++k;
         }
         r.stddev.push_back(sd);
@@ -780,6 +786,9 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
                                     ": the model names no velocity output (gap.velocity)");
             } else {
                 variants.push_back(descriptor(e).setup(ctx, site.first));
+                // And its nested restrictions (EffectDescriptor::nested), fitted as variants of their own.
+                if (descriptor(e).nested)
+                    for (const EffectSetup& v : descriptor(e).nested(ctx, site.first)) variants.push_back(v);
             }
         }
         for (const EffectSetup& es : variants) {
