@@ -24,6 +24,43 @@ std::vector<ParamInfo> per_output(const std::string& prefix, const std::vector<s
     return v;
 }
 
+// A log grid lo, lo 2^(1/n), ..., up to hi (n per octave).
+std::vector<double> octave_grid(double lo, double hi, int n)
+{
+    std::vector<double> g;
+    for (int i = 0; lo * std::pow(2.0, double(i) / n) <= hi * (1 + 1e-9); ++i) g.push_back(lo * std::pow(2.0, double(i) / n));
+    return g;
+}
+
+// The two signed edges of the dead zone and the saturation (lower < 0 <
+// upper), in units of max |u| of the fit part: every pair of `grid` as a
+// start (screened by cost, the best three refined) and, with `symmetric`,
+// the restriction lower = -upper started from each grid value alone.
+// The edges of a record's two directions are separate starts because a
+// record may drive one direction much further than the other, and a
+// one-way move (a positioning stroke whose braking falls into the
+// held-out tail) does not reach the lower edge in the fit part at all:
+// there the cost is flat in it, and only the restriction (ranked on
+// held-out data like any variant) places it.
+EffectSetup edge_setup(Effect e, const FitContext& c, double lo, double hi, const std::vector<double>& grid, bool symmetric)
+{
+    EffectSetup s{e, Site::force_input, 0, {{c.umax, -hi, -lo, false}, {c.umax, lo, hi, false}}, {}, true};
+    if (symmetric) {
+        s.spec[0].mirror = 1;
+        for (double b : grid) s.starts.push_back({-b, b});
+    } else {
+        for (double a : grid)
+            for (double b : grid) s.starts.push_back({-a, b});
+    }
+    return s;
+}
+
+// Dead-zone edges: 1/64 .. 1 x max |u|, two per octave; bounds 0 .. 2 x max
+// |u| (in a loop the augmented replay's command exceeds the nominal's).
+std::vector<double> deadzone_grid() { return octave_grid(1.0 / 64, 1.0, 2); }
+// Limits: 1/8 .. 1.41 x max |u|, two per octave; bounds 2 % .. 200 %.
+std::vector<double> saturation_grid() { return octave_grid(1.0 / 8, M_SQRT2, 2); }
+
 // Largest integer delay the grid tries: 50 samples or a 20th of the fit record.
 long delay_grid_max(const FitContext& c) { return std::max<long>(1, std::min<long>(50, c.fit_samples / 20)); }
 
@@ -165,29 +202,26 @@ const std::vector<EffectDescriptor>& catalog()
          [](const std::vector<std::string>&, const Units& u, Site) {
              return std::vector<ParamInfo>{{"lower", u.u}, {"upper", u.u}};
          },
-         [](const FitContext& c, Site) {
-             // Edges signed (lower <= 0 <= upper), started symmetric.
-             return EffectSetup{Effect::deadzone, Site::force_input, 0, {{c.Su, -kBig, 0, false}, {c.Su, 0, kBig, false}},
-                                {{-0.02, 0.02}, {-0.1, 0.1}, {-0.4, 0.4}}, false};
-         },
+         [](const FitContext& c, Site) { return edge_setup(Effect::deadzone, c, 0.0, 2.0, deadzone_grid(), false); },
          [](const std::vector<double>& p, Site, const ReplaySetup&, ReplayTerms& t) {
              t.dz_lo = std::min(p[0], 0.0);
              t.dz_hi = std::max(p[1], 0.0);
+         },
+         [](const FitContext& c, Site) {
+             return std::vector<EffectSetup>{edge_setup(Effect::deadzone, c, 0.0, 2.0, deadzone_grid(), true)};
          }},
         {Effect::saturation, "saturation", "clamp(u, lower, upper) (asymmetric)", false, {Site::force_input},
          "commands up to and beyond the limit, in both directions",
          [](const std::vector<std::string>&, const Units& u, Site) {
              return std::vector<ParamInfo>{{"lower", u.u}, {"upper", u.u}};
          },
-         [](const FitContext& c, Site) {
-             // Limits signed (lower < 0 < upper), each within 2 % .. 200 % of max |u|; started symmetric.
-             return EffectSetup{Effect::saturation, Site::force_input, 0,
-                                {{c.umax, -2.0, -0.02, false}, {c.umax, 0.02, 2.0, false}},
-                                {{-0.5, 0.5}, {-0.8, 0.8}, {-0.95, 0.95}}, false};
-         },
+         [](const FitContext& c, Site) { return edge_setup(Effect::saturation, c, 0.02, 2.0, saturation_grid(), false); },
          [](const std::vector<double>& p, Site, const ReplaySetup&, ReplayTerms& t) {
              t.sat_lo = std::min(p[0], -1e-12);
              t.sat_hi = std::max(p[1], 1e-12);
+         },
+         [](const FitContext& c, Site) {
+             return std::vector<EffectSetup>{edge_setup(Effect::saturation, c, 0.02, 2.0, saturation_grid(), true)};
          }},
         {Effect::fractional_damping, "fractional_damping",
          "c D^alpha v to ground (Grunwald-Letnikov of order alpha - 1 on v), or c D^alpha q in parallel with a declared "

@@ -67,7 +67,7 @@ FitOutcome refine(FitProblem& P, const std::vector<double>& theta0, int max_iter
     size_t k = 0;
     for (const EffectSetup& e : P.effects)
         for (const ParamSpec& p : e.spec) {
-            if (!p.fixed) P.free_idx.push_back(int(k));
+            if (!p.fixed && p.mirror < 0) P.free_idx.push_back(int(k));
             ++k;
         }
     P.base = theta0;
@@ -194,10 +194,14 @@ FitReport make_report(const FitProblem& P, const FitOutcome& o, const Evaluator&
     for (const EffectSetup& e : P.effects) {
         std::vector<double> sd;
         std::vector<std::string> why;
+        const size_t first = k;
         for (const ParamSpec& p : e.spec) {
-            sd.push_back(p.fixed ? kNaN : p.scale * o.stddev[k]);
-            why.push_back(p.fixed ? "" : unidentified_reason(o.theta[k], o.stddev[k], p));
-            r.fitted_params += 1;
+            // A mirrored parameter (ParamSpec::mirror) has the std and the identification of its source.
+            const size_t src = p.mirror >= 0 ? first + size_t(p.mirror) : k;
+            const ParamSpec& ps = e.spec[src - first];
+            sd.push_back(ps.fixed ? kNaN : ps.scale * o.stddev[src]);
+            why.push_back(ps.fixed ? "" : unidentified_reason(o.theta[src], o.stddev[src], ps));
+            if (p.mirror < 0) r.fitted_params += 1;
             ++k;
         }
         r.stddev.push_back(sd);

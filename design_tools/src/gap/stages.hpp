@@ -69,6 +69,8 @@ struct FitProblem {
         for (const EffectSetup& e : effects) {
             EffectInstance in{e.kind, {}, e.site, e.coupling};
             for (const ParamSpec& p : e.spec) in.params.push_back(p.scale * theta[k++]);
+            for (size_t j = 0; j < e.spec.size(); ++j)
+                if (e.spec[j].mirror >= 0) in.params[j] = -in.params[size_t(e.spec[j].mirror)];  // ParamSpec::mirror
             out.push_back(in);
         }
         return out;

@@ -63,6 +63,9 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
                                     ": the model names no velocity output (gap.velocity)");
             } else {
                 variants.push_back(descriptor(e).setup(ctx, site.first));
+                // And its nested restrictions (EffectDescriptor::nested), fitted as variants of their own.
+                if (descriptor(e).nested)
+                    for (const EffectSetup& v : descriptor(e).nested(ctx, site.first)) variants.push_back(v);
             }
         }
         for (const EffectSetup& es : variants) {

@@ -79,6 +79,11 @@ struct ParamSpec {
     double scale;
     double lo, hi;  // normalized bounds
     bool fixed;     // set from the data (a grid), not by the solver
+    // >= 0: this parameter is the negative of the effect's parameter
+    // `mirror` (a symmetric restriction: lower = -upper), neither fitted nor
+    // counted as a fitted parameter; its std and identification are the
+    // mirrored one's.
+    int mirror = -1;
 };
 // The fit set-up of one effect at one site: parameter scales and bounds, start values.
 struct EffectSetup {
@@ -145,6 +150,13 @@ struct EffectDescriptor {
     EffectSetup (*setup)(const FitContext& c, Site site);
     // Its replay: sets its terms from its physical parameters.
     void (*apply)(const std::vector<double>& p, Site site, const ReplaySetup& s, ReplayTerms& t);
+    // Optional: nested restrictions of setup() at a site (fewer parameters,
+    // the same names, e.g. the symmetric dead zone lower = -upper inside the
+    // asymmetric one). Each is fitted as a variant of its own, like the
+    // sites: the best score is the effect's candidate, so the full model
+    // must beat its restriction on held-out data by the penalty of its extra
+    // parameters (docs/gap.md, "Nested restrictions").
+    std::vector<EffectSetup> (*nested)(const FitContext& c, Site site) = nullptr;
 };
 const EffectDescriptor& descriptor(Effect e);
 
