@@ -9,17 +9,24 @@
 // of F Nm at the shaft is F / Ka V.
 //
 // The simulator is the bench's own (not the diagnosis's replay): 20 exact
-// sub-steps per sample of the linear axis with the drive force held, dry
-// friction per sub-step as the force that stops the axis within the sub-step,
-// limited to its level (Karnopp), so that the effect-free record is the
-// zero-order-hold nominal up to the sensor noise.
+// sub-steps per sample of the linear part (axis with its viscous friction,
+// and the series mode when injected) with the drive force held, dry
+// friction per sub-step as the force that stops the axis within the
+// sub-step, limited to its level (Karnopp), so that the effect-free record
+// is the zero-order-hold nominal up to the sensor noise. (Before, the mode
+// was stepped by semi-implicit Euler and the viscous term explicitly: at
+// 20 sub-steps that moved a loop's limit cycle by more than the replay's
+// own error; 100 sub-steps differed from 20 by 4.6 % of the position's std
+// after 3 s on a 38 Hz mode.)
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <limits>
 #include <stdexcept>
 
 #include "fracbench/families.hpp"
 #include "fracbench/visibility.hpp"
+#include "fracdesign/gap/nominal.hpp"
 
 namespace fracbench {
 
@@ -42,6 +49,7 @@ struct Plant {
 struct Injection {
     int extra_delay = 0;        // samples, drive command path
     int vel_delay = 0;          // samples, velocity sensor
+    int pos_delay = 0;          // samples, position sensor (never drawn: a drive delay's equivalent, add_equivalents)
     double gain = 1;                                // drive gain
     double lim_lo = -kInf, lim_hi = kInf;           // drive limits [V] (asymmetric)
     double dz_lo = 0, dz_hi = 0;                    // drive dead-zone edges [V] (asymmetric, lower <= 0 <= upper)
@@ -93,10 +101,30 @@ Run simulate(const Plant& p, const Injection& in, hil_rng* noise)
     out.y.resize(N, 2);
     out.ref.resize(N);
     out.cmd.resize(N);
-    double th = 0, v = 0, e_prev = 0, d_prev = 0, eta = 0, etad = 0;
+    double e_prev = 0, d_prev = 0;
     const int dl = kCompDelay + in.extra_delay;
-    std::vector<double> cbuf(size_t(dl) + 1, 0.0), vbuf(size_t(in.vel_delay) + 1, 0.0);
-    const double h = kTs / kSub, ex = std::exp(-p.b / p.J * h), phi = (1 - ex) / (p.b / p.J);
+    std::vector<double> cbuf(size_t(dl) + 1, 0.0), vbuf(size_t(in.vel_delay) + 1, 0.0), pbuf(size_t(in.pos_delay) + 1, 0.0);
+    // The linear part z = [theta, v, eta, eta'] with inputs [u, F] (F the
+    // dry friction force, V at the drive input, opposing):
+    //   J v' = Ka (d - Fv v - F) - b v,  d = eta with the mode, else u;
+    //   eta'' = wm^2 (u - eta) - 2 zeta wm eta'.
+    // Exact zero-order hold over a sub-step: z+ = Phi z + Gam [u; F].
+    const double h = kTs / kSub, wm = 2 * M_PI * in.mode_hz;
+    Eigen::MatrixXd Ac = Eigen::MatrixXd::Zero(4, 4), Bc = Eigen::MatrixXd::Zero(4, 2), Phi, Gam;
+    Ac(0, 1) = 1;
+    Ac(1, 1) = -(p.b + p.Ka * in.Fv) / p.J;
+    Bc(1, 1) = -p.Ka / p.J;
+    if (in.mode_hz > 0) {
+        Ac(1, 2) = p.Ka / p.J;
+        Ac(2, 3) = 1;
+        Ac(3, 2) = -wm * wm;
+        Ac(3, 3) = -2 * in.mode_zeta * wm;
+        Bc(3, 0) = wm * wm;
+    } else {
+        Bc(1, 0) = p.Ka / p.J;
+    }
+    fracdesign::gap::zoh(Ac, Bc, h, Phi, Gam);
+    Eigen::Vector4d z = Eigen::Vector4d::Zero();
     auto gauss = [&](double s) {
         if (!noise || s == 0) return 0.0;
         const double u1 = std::max(hil_rng_uniform(noise), 1e-300), u2 = hil_rng_uniform(noise);
@@ -104,10 +132,12 @@ Run simulate(const Plant& p, const Injection& in, hil_rng* noise)
     };
     for (long k = 0; k < N; ++k) {
         const double t = double(k) * kTs, r = reference(p, t);
-        double ypos = th + gauss(p.sigma_pos);
+        for (size_t i = pbuf.size() - 1; i > 0; --i) pbuf[i] = pbuf[i - 1];
+        pbuf[0] = z(0);
+        double ypos = pbuf.back() + gauss(p.sigma_pos);
         if (in.pos_quant > 0) ypos = in.pos_quant * std::round(ypos / in.pos_quant);
         for (size_t i = vbuf.size() - 1; i > 0; --i) vbuf[i] = vbuf[i - 1];
-        vbuf[0] = v;
+        vbuf[0] = z(1);
         const double yvel = vbuf.back() + in.vel_offset + gauss(p.sigma_vel);
         const double e = r - ypos, d = p.a * d_prev + (1 - p.a) * (e - e_prev) / kTs;
         const double c = std::clamp(p.Kp * e + p.Kd * d, -kClip, kClip);
@@ -122,28 +152,72 @@ Run simulate(const Plant& p, const Injection& in, hil_rng* noise)
         // The drive (the diagnosis's order: gain, limit, dead zone).
         double u = std::clamp(in.gain * cbuf.back(), in.lim_lo, in.lim_hi);
         u = u > in.dz_hi ? u - in.dz_hi : (u < in.dz_lo ? u - in.dz_lo : 0.0);
-        const double wm = 2 * M_PI * in.mode_hz;
         for (int s = 0; s < kSub; ++s) {
-            double ud = u;
-            if (in.mode_hz > 0) {
-                // eta'' = wm^2 (u - eta) - 2 zeta wm eta' (semi-implicit Euler; wm h < 0.013)
-                etad += h * (wm * wm * (u - eta) - 2 * in.mode_zeta * wm * etad);
-                eta += h * etad;
-                ud = eta;
-            }
-            const double f = p.Ka * (ud - in.Fv * v);
-            double vn = v * ex + f / p.J * phi;
+            const double v = z(1);
+            Eigen::Vector4d zn = Phi * z + Gam.col(0) * u;
             double level = in.Fc;
             if (in.stribeck) level = in.Fc + (in.Fs - in.Fc) * std::exp(-(v / in.vs) * (v / in.vs));
-            if (level > 0) {
-                const double stop = vn * p.J / (p.Ka * phi);
-                vn -= std::clamp(stop, -level, level) * p.Ka * phi / p.J;
-            }
-            th += 0.5 * h * (v + vn);
-            v = vn;
+            // The force that stops the axis within the sub-step (v+ = 0), limited to the level.
+            if (level > 0) zn += Gam.col(1) * std::clamp(-zn(1) / Gam(1, 1), -level, level);
+            z = zn;
         }
     }
     return out;
+}
+
+// The small-signal loop of the drawn plant with the injection's linear part
+// (gain, drive and sensor delays, series mode; limits, dead zone, friction
+// and quantization left out): the zero-order hold of the axis (and mode) at
+// Ts, the PD with filtered difference, the command delay line. Returns the
+// smallest damping ratio over its poles (s = log(z)/Ts of the oscillatory
+// poles with |z| > 0.3), -1 when a pole lies on or outside the unit circle.
+double loop_damping(const Plant& p, const Injection& in)
+{
+    const bool mode = in.mode_hz > 0;
+    const int np = mode ? 4 : 2, dl = kCompDelay + in.extra_delay, dp = in.pos_delay;
+    Eigen::MatrixXd Ac = Eigen::MatrixXd::Zero(np, np), Bc = Eigen::MatrixXd::Zero(np, 1), Ad, Bd;
+    Ac(0, 1) = 1;
+    Ac(1, 1) = -(p.b + p.Ka * in.Fv) / p.J;
+    if (mode) {
+        const double wm = 2 * M_PI * in.mode_hz;
+        Ac(1, 2) = p.Ka / p.J;
+        Ac(2, 3) = 1;
+        Ac(3, 2) = -wm * wm;
+        Ac(3, 3) = -2 * in.mode_zeta * wm;
+        Bc(3, 0) = wm * wm;
+    } else {
+        Bc(1, 0) = p.Ka / p.J;
+    }
+    fracdesign::gap::zoh(Ac, Bc, kTs, Ad, Bd);
+    // State: plant (np), position readings theta(k-1..k-dp) (dp), e_{k-1}, d_{k-1}, commands c(k-1..k-dl).
+    const int ip = np, ie = ip + dp, id = ie + 1, ic = id + 1, n = ic + dl;
+    const double g = (1 - p.a) / kTs;
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
+    Eigen::RowVectorXd ym = Eigen::RowVectorXd::Zero(n);  // the position the controller reads
+    if (dp > 0) ym(ip + dp - 1) = 1;
+    else ym(0) = 1;
+    // e_k = -ym (r = 0), d_k = a d + g (e_k - e_{k-1}), c_k = Kp e_k + Kd d_k.
+    const Eigen::RowVectorXd e = -ym;
+    Eigen::RowVectorXd d = g * e;
+    d(ie) -= g;
+    d(id) += p.a;
+    A.block(0, 0, np, np) = Ad;
+    A.block(0, ic + dl - 1, np, 1) = in.gain * Bd;
+    if (dp > 0) A(ip, 0) = 1;
+    for (int i = 1; i < dp; ++i) A(ip + i, ip + i - 1) = 1;
+    A.row(ie) = e;
+    A.row(id) = d;
+    A.row(ic) = p.Kp * e + p.Kd * d;
+    for (int i = 1; i < dl; ++i) A(ic + i, ic + i - 1) = 1;
+    const Eigen::VectorXcd z = Eigen::EigenSolver<Eigen::MatrixXd>(A, false).eigenvalues();
+    double zmin = 1;
+    for (Eigen::Index i = 0; i < z.size(); ++i) {
+        if (std::abs(z(i)) >= 1) return -1;
+        if (std::abs(z(i)) <= 0.3 || std::fabs(z(i).imag()) < 1e-12) continue;
+        const std::complex<double> sk = std::log(z(i)) / kTs;
+        zmin = std::min(zmin, -sk.real() / std::abs(sk));
+    }
+    return zmin;
 }
 
 double peak_cmd(const Plant& p)
@@ -248,20 +322,58 @@ Injection injection_of(const BenchCase& c)
     return in;
 }
 
-// Draws `e` until it is visible (visibility.hpp) on top of the injection so far.
+// A servo axis in service runs a commissioned loop: every small-signal pole
+// damped at least this much. A drawn delay or resonance that takes the loop
+// below it makes a record no real axis gives (the loop rings for tens of
+// periods, or sings at the +-10 V clip in a limit cycle whose phase the
+// sensor noise sets, and the drive trips on its following error); before
+// this rule, 3-10 extra cycles of delay and a 15-40 Hz resonance under a
+// 6-15 Hz loop made most such records limit cycles (docs/gap.md "servo").
+// Not applied to the series resonance: under this PD a resonance near the
+// bandwidth is visible but undamps the loop, and one far above it (4-10 x)
+// is damped but below the visibility rule on most axes, so no size is both
+// on many drawn plants; its records stay limit cycles (docs/gap.md).
+constexpr double kLoopDampingMin = 0.01;
+
+// Draws `e` until it is visible (visibility.hpp) on top of the injection so
+// far and leaves the small-signal loop damped (kLoopDampingMin).
 TruthEffect draw_visible(const std::string& e, const Plant& p, double peak, hil_rng* rng, Injection& in)
 {
     const Eigen::MatrixXd without = simulate(p, in, nullptr).y;
+    // (On top of a series resonance that undamped the loop already, the rule has nothing left to keep.)
+    const bool keep_damped = e != "unmodelled_mode" && loop_damping(p, in) >= kLoopDampingMin;
     for (int i = 0; i < kVisibleDraws; ++i) {
         Injection trial = in;
         TruthEffect t = draw_effect(e, p, peak, rng, trial);
+        if (keep_damped && loop_damping(p, trial) < kLoopDampingMin) continue;
         if (visibility(simulate(p, trial, nullptr).y, without, {p.sigma_pos, p.sigma_vel}) >= kVisibleNoiseMultiple) {
             in = trial;
             return t;
         }
     }
-    throw std::runtime_error("gap-bench: family servo: no visible size of '" + e + "' in " +
+    throw std::runtime_error("gap-bench: family servo: no visible size of '" + e + "' that leaves the loop damped in " +
                              std::to_string(kVisibleDraws) + " draws");
+}
+
+// The look-alikes this family proves (gap_bench.hpp, TruthEffect::
+// equivalents): a drive delay of n samples against n samples more on both
+// sensors. The loop is closed through the position sensor and the record
+// starts at rest, so the two give the same record sample for sample (the
+// command, the readings); kept when the simulator confirms it on this case.
+void add_equivalents(const Plant& p, const Injection& in, TruthEffect& t)
+{
+    if (t.effect != "input_delay") return;
+    Injection alt = in;
+    alt.extra_delay = 0;
+    alt.pos_delay += in.extra_delay;
+    alt.vel_delay += in.extra_delay;
+    if (visibility(simulate(p, alt, nullptr).y, simulate(p, in, nullptr).y, {p.sigma_pos, p.sigma_vel}) >=
+        kEquivalentNoiseMultiple)
+        return;
+    TruthEffect q;
+    q.effect = "output_delay";
+    q.params = {{"delay_s_position", alt.pos_delay * kTs}, {"delay_s_velocity", alt.vel_delay * kTs}};
+    t.equivalents.push_back(q);
 }
 
 const std::vector<std::string>& servo_labels()
@@ -315,6 +427,7 @@ Drawn draw(const BenchOptions& opt, int id)
         if (hil_rng_uniform(&rng) < opt.two_effect_prob)
             d.c.truth.push_back(draw_visible(second_label(labels, first, &rng), p, peak, &rng, d.in));
     }
+    for (TruthEffect& t : d.c.truth) add_equivalents(p, d.in, t);
     d.c.scenario = "family = servo\n";
     for (const auto& kv : d.c.plant) d.c.scenario += scenario_line("plant." + kv.first, kv.second);
     d.c.scenario += scenario_line("Ts", kTs) + scenario_line("duration", kDuration) + scenario_line("clip_V", kClip) +
@@ -368,9 +481,13 @@ nlohmann::json servo_nominal_doc(const BenchCase& c)
             {"D", rows(D)},
             {"inputs", {"voltage"}},
             {"outputs", {"position", "velocity"}},
+            // The records start at rest (axis, controller and reference at
+            // zero): stated, so that the start is not fitted to the first
+            // noisy samples (docs/gap.md "What the document states").
             {"gap",
              {{"velocity", "velocity"},
               {"force_input", "voltage"},
+              {"initial_state", "at_rest"},
               {"closed_loop",
                {{"references", {"ref"}},
                 {"measured", {"position"}},

@@ -4,6 +4,7 @@
 #include "fracbench/gap_bench.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -277,6 +278,7 @@ nlohmann::json truth_json(const std::vector<TruthEffect>& truth)
         for (const auto& kv : t.rig) rig[kv.first] = kv.second;
         for (const TruthParam& q : t.params) p[q.name] = q.value;
         a.push_back({{"effect", t.effect}, {"rig", rig}, {"params", p}});
+        if (!t.equivalents.empty()) a.back()["equivalents"] = truth_json(t.equivalents);
     }
     return a;
 }
@@ -324,7 +326,21 @@ BenchScore score_bench(const std::vector<CaseOutcome>& cases)
         const TruthEffect* found = nullptr;
         for (const TruthEffect& t : c.truth)
             if (t.effect == cs.top1) found = &t;
+        // A proved equivalent of a true effect counts when the verdict
+        // states that effect as its look-alike (the record cannot tell them
+        // apart, and the verdict says so: issue 17 item 5).
+        for (const TruthEffect& t : c.truth) {
+            if (found) break;
+            if (std::find(c.look_alikes.begin(), c.look_alikes.end(), t.effect) == c.look_alikes.end()) continue;
+            for (const TruthEffect& q : t.equivalents)
+                if (q.effect == cs.top1) {
+                    found = &q;
+                    cs.by_look_alike = true;
+                    break;
+                }
+        }
         cs.correct = c.truth.empty() ? cs.top1 == "none" : found != nullptr;
+        S.look_alike_correct += cs.by_look_alike;
         if (c.truth.size() <= 1) S.confusion[size_t(index(cs.truth_label))][size_t(index(cs.top1))] += 1;
         else {
             index(cs.top1);
@@ -529,6 +545,7 @@ void diagnose_case(const BenchOptions& opt, const std::vector<std::string>& outp
     out.result = diagnose(m, out.data, nullptr, g);
     out.outcome.truth = out.draw.truth;
     out.outcome.shrink = out.result.verdict.shrink;
+    for (const auto& l : out.result.confidence.look_alikes) out.outcome.look_alikes.push_back(l.effect);
     for (const EffectInstance& e : out.result.verdict.effects) {
         out.outcome.verdict.push_back(effect_name(e.kind));
         const std::vector<std::string> pn = param_names(e.kind, out.result.outputs, e.site);
@@ -591,6 +608,7 @@ nlohmann::json score_json(const BenchScore& S)
               {"accuracy", num(S.accuracy)},
               {"two_effect_cases", S.two_effect_cases},
               {"two_effect_correct", S.two_effect_correct},
+              {"look_alike_correct", S.look_alike_correct},
               {"median_param_error", num(S.median_param_error)},
               {"param_cases", S.param_cases},
               {"median_shrink_found", num(S.median_shrink_found)},
@@ -611,13 +629,18 @@ CaseOutcome outcome_from_json(const nlohmann::json& c)
     // null stands for a non-finite number in the document (num above)
     const auto val = [](const nlohmann::json& x) { return x.is_null() ? kNaN : x.get<double>(); };
     CaseOutcome o;
-    for (const auto& t : c.at("truth")) {
+    std::function<TruthEffect(const nlohmann::json&)> truth_of = [&](const nlohmann::json& t) {
         TruthEffect te;
         te.effect = t.at("effect").get<std::string>();
         for (auto it = t.at("params").begin(); it != t.at("params").end(); ++it)
             te.params.push_back({it.key(), val(it.value())});
-        o.truth.push_back(te);
-    }
+        if (t.contains("equivalents"))
+            for (const auto& q : t.at("equivalents")) te.equivalents.push_back(truth_of(q));
+        return te;
+    };
+    for (const auto& t : c.at("truth")) o.truth.push_back(truth_of(t));
+    if (c.contains("look_alikes"))
+        for (const auto& l : c.at("look_alikes")) o.look_alikes.push_back(l.get<std::string>());
     for (const auto& e : c.at("verdict")) {
         o.verdict.push_back(e.at("effect").get<std::string>());
         std::map<std::string, double> p;
@@ -662,6 +685,7 @@ nlohmann::json run_bench(const BenchOptions& opt, std::ostream* progress)
                              {"truth", truth_json(c.truth)},
                              {"verdict", vp},
                              {"shrink", num(r.outcome.shrink)},
+                             {"look_alikes", r.outcome.look_alikes},
                              {"gap_before", num(r.result.gap_before_total)},
                              {"gap_after", num(r.result.verdict.gap)},
                              {"scenario", c.scenario}};
@@ -669,13 +693,14 @@ nlohmann::json run_bench(const BenchOptions& opt, std::ostream* progress)
         cj["truth_label"] = one.per_case[0].truth_label;
         cj["top1"] = one.per_case[0].top1;
         cj["correct"] = one.per_case[0].correct;
+        cj["by_look_alike"] = one.per_case[0].by_look_alike;
         cj["param_error"] = num(one.per_case[0].param_error);
         cases.push_back(cj);
         if (progress) {
             char b[256];
             std::snprintf(b, sizeof b, "  case %3d  %-38s -> %-20s %s  shrink %6.1f %%  param err %s\n", id,
                           cj["truth_label"].get<std::string>().c_str(), cj["top1"].get<std::string>().c_str(),
-                          one.per_case[0].correct ? "ok  " : "MISS", 100 * r.outcome.shrink,
+                          one.per_case[0].by_look_alike ? "ok= " : one.per_case[0].correct ? "ok  " : "MISS", 100 * r.outcome.shrink,
                           std::isfinite(one.per_case[0].param_error)
                               ? (std::to_string(int(std::lround(100 * one.per_case[0].param_error))) + " %").c_str()
                               : "-");

@@ -70,7 +70,8 @@ int run_gap_bench(const std::vector<std::string>& argv)
         return std::string(b);
     };
     std::cout << "top-1 accuracy " << pct(s["accuracy"]) << " (" << s["correct"] << "/" << s["cases"]
-              << "; two-effect cases " << s["two_effect_correct"] << "/" << s["two_effect_cases"] << ")\n"
+              << "; two-effect cases " << s["two_effect_correct"] << "/" << s["two_effect_cases"]
+              << "; named a proved equivalent stating the truth as look-alike (ok=) " << s["look_alike_correct"] << ")\n"
               << "median parameter error " << pct(s["median_param_error"]) << " over " << s["param_cases"]
               << " found effects with a mapped parameter\n"
               << "median shrink when found " << pct(s["median_shrink_found"]) << " over " << s["found_cases"] << " cases\n";

@@ -48,6 +48,34 @@ int label(const BenchScore& s, const std::string& n)
 
 }  // namespace
 
+// A proved equivalent of the truth (the family simulated it: the same
+// record) counts only when the verdict states the truth as its look-alike,
+// and its parameters are scored against the equivalent's.
+TEST(GapBenchScore, a_proved_equivalent_counts_only_when_the_verdict_states_the_truth_as_look_alike)
+{
+    TruthEffect din{"input_delay", {}, {{"delay_s", 0.008}}};
+    din.equivalents.push_back(TruthEffect{"output_delay", {}, {{"delay_s_y", 0.008}}});
+    CaseOutcome stated = outcome({din}, {"output_delay"}, {{{"delay_s_y", 0.0088}}}, 0.9);
+    stated.look_alikes = {"input_delay"};
+    const CaseOutcome silent = outcome({din}, {"output_delay"}, {{{"delay_s_y", 0.0088}}}, 0.9);
+    CaseOutcome other = outcome({din}, {"gain_error"}, {{{"gain", 1.1}}}, 0.2);
+    other.look_alikes = {"input_delay"};
+    const BenchScore s = score_bench({stated, silent, other});
+    EXPECT_EQ(s.correct, 1);
+    EXPECT_EQ(s.look_alike_correct, 1);
+    EXPECT_TRUE(s.per_case[0].correct && s.per_case[0].by_look_alike);
+    EXPECT_FALSE(s.per_case[1].correct);
+    EXPECT_FALSE(s.per_case[2].correct);
+    EXPECT_NEAR(s.per_case[0].param_error, 0.1, 1e-12);
+    // The bench document round-trips the equivalents and the look-alikes.
+    const nlohmann::json entry = {{"truth", {{{"effect", "input_delay"}, {"params", {{"delay_s", 0.008}}},
+                                             {"equivalents", {{{"effect", "output_delay"}, {"params", {{"delay_s_y", 0.008}}}}}}}}},
+                                  {"verdict", {{{"effect", "output_delay"}, {"params", {{"delay_s_y", 0.0088}}}}}},
+                                  {"look_alikes", {"input_delay"}},
+                                  {"shrink", 0.9}};
+    EXPECT_EQ(score_bench({outcome_from_json(entry)}).look_alike_correct, 1);
+}
+
 TEST(GapBenchScore, counts_accuracy_confusion_parameter_error_and_shrink)
 {
     const TruthEffect coulomb{"coulomb_friction", {}, {{"Fc", 5.0}}};

@@ -39,6 +39,13 @@ struct TruthEffect {
     std::string effect;                                      // effect name (effect_name())
     std::vector<std::pair<std::string, std::string>> rig;    // rig / simulator keys set for the injection
     std::vector<TruthParam> params;                          // mapped parameters (empty: label only)
+    // Injections of other labels that give this case's record (the family
+    // simulated them: noise-free, every compared output within
+    // kEquivalentNoiseMultiple of its noise std, visibility.hpp), e.g. a
+    // drive delay and the same delay of every in-loop sensor. A verdict
+    // naming one is right when it states this effect as its look-alike
+    // (docs/gap.md "Look-alikes the bench proves"). Their rig keys are empty.
+    std::vector<TruthEffect> equivalents;
 };
 
 struct BenchCase {
@@ -56,12 +63,14 @@ struct CaseOutcome {
     std::vector<std::string> verdict;               // verdict effects, in selection order (empty: none)
     std::vector<std::map<std::string, double>> verdict_params;  // per verdict effect: name -> value
     double shrink = 0.0;                            // verdict shrink
+    std::vector<std::string> look_alikes;           // the verdict's confidence.look_alikes (effect names)
 };
 
 struct CaseScore {
     std::string truth_label;   // the effect name, "none", or "a+b" for two effects
     std::string top1;          // the verdict's first effect or "none"
-    bool correct = false;      // top1 is the truth (one of the two, for two effects)
+    bool correct = false;      // top1 is the truth (one of the two, for two effects), or a proved equivalent stating it
+    bool by_look_alike = false;  // correct through an equivalent whose look-alike the verdict states
     double param_error;        // mean relative error of the mapped parameters of the found effect (NaN: none)
     double shrink = 0.0;
 };
@@ -78,6 +87,7 @@ struct BenchScore {
     std::vector<std::vector<int>> confusion;   // [truth][top-1], cases with one effect or none
     int cases = 0, correct = 0;
     int two_effect_cases = 0, two_effect_correct = 0;
+    int look_alike_correct = 0;                // correct cases that named a proved equivalent (CaseScore::by_look_alike)
     double accuracy = 0.0;                     // correct / cases (all cases)
     double median_param_error;                 // over cases with a found effect that has mapped parameters
     int param_cases = 0;

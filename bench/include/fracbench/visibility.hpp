@@ -13,6 +13,11 @@
 namespace fracbench {
 
 constexpr double kVisibleNoiseMultiple = 5.0;
+// Two injections whose noise-free records differ on every compared output by
+// less than this many noise std (rms) are the same record to any fit (400x
+// below the visibility rule in energy): the families list such an injection
+// of another label as the truth's equivalent (gap_bench.hpp, TruthEffect).
+constexpr double kEquivalentNoiseMultiple = 0.05;
 constexpr int kVisibleDraws = 20;
 
 // rms over samples of (with - without) per column, divided by noise_std per

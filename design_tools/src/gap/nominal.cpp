@@ -124,6 +124,8 @@ NominalModel nominal_from_json(const json& doc, double Ts, const std::string& ba
         throw std::runtime_error("model: the gap diagnosis needs input and output names (they name the data columns)");
     if (ss.continuous()) {
         zoh(ss.A, ss.B, Ts, m.A, m.B);
+        m.Ac = ss.A;
+        m.Bc = ss.B;
     } else {
         if (std::fabs(ss.Ts - Ts) > 1e-3 * Ts)
             throw std::runtime_error("model: sample time " + std::to_string(ss.Ts) + " s does not match the data's " +

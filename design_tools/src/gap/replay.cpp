@@ -6,6 +6,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include <unsupported/Eigen/MatrixFunctions>
+
 #include "fracdesign/gap/effects.hpp"
 
 #include "frac/fo_gl.h"
@@ -146,6 +148,77 @@ void gl_init_or_throw(frac_gl& gl, double r, double Ts, int L, std::vector<frac_
         throw std::runtime_error("fractional operator of order " + std::to_string(r) + " rejected by frac_gl_init");
 }
 
+// The mode in series at the force input over one sample, a held:
+//   eta'' + 2 zeta w eta' + w^2 eta = w^2 a,  x' = Ac x + Bc (eta e_f + u_rest).
+// xm = [eta, eta'] steps by (As, Bs); the mean of eta over the sample is
+// Cs xm + Ds a (zero-order hold of [xm; int eta]). With the plant's
+// generator known, the plant sees eta's exact path: the zero-order hold of
+// the joint generator [[Ac, Bc e_f 0], [0, Am]] gives
+//   x(k+1) = A x + B u_rest + Pxm xm + Gxa a,
+// and the replay adds corr = Pxm xm + Gxa a - B e_f (Cs xm + Ds a) to the
+// step that feeds the plant eta's mean. The mean alone is second order in
+// w Ts: at w Ts = 0.24 (38 Hz at 1 ms) under a PD loop its phase error
+// moves a limit cycle's period, and the replay drifts off the record (the
+// servo family, docs/gap.md). The generator is the document's when its
+// plant is continuous, else log(A)/Ts with Bc = (int_0^Ts e^{Ac s} ds)^-1 B
+// when A has a real logarithm that gives it back; a plant with none (a
+// pure delay chain) keeps the mean (exact = false).
+struct SeriesHold {
+    Eigen::Matrix2d As = Eigen::Matrix2d::Identity();
+    Eigen::Vector2d Bs = Eigen::Vector2d::Zero(), Cs = Eigen::Vector2d::Zero();
+    double Ds = 1.0;
+    bool exact = false;
+    Eigen::MatrixXd Pxm;  // nx x 2
+    Eigen::VectorXd Gxa;  // nx
+};
+
+SeriesHold series_mode_hold(const NominalModel& m, double w, double zeta)
+{
+    const double Ts = m.Ts;
+    SeriesHold h;
+    {
+        Eigen::MatrixXd Ac = Eigen::MatrixXd::Zero(3, 3), Bc = Eigen::MatrixXd::Zero(3, 1), Ad, Bd;
+        Ac(0, 1) = 1;
+        Ac(1, 0) = -w * w;
+        Ac(1, 1) = -2 * zeta * w;
+        Ac(2, 0) = 1;
+        Bc(1, 0) = w * w;
+        zoh(Ac, Bc, Ts, Ad, Bd);
+        h.As = Ad.topLeftCorner(2, 2);
+        h.Bs = Bd.col(0).head(2);
+        h.Cs = Ad.row(2).head(2).transpose() / Ts;
+        h.Ds = Bd(2, 0) / Ts;
+    }
+    const Eigen::Index nx = m.A.rows();
+    Eigen::MatrixXd Ag = m.Ac;
+    Eigen::VectorXd bf;
+    if (Ag.rows() == nx && m.Bc.rows() == nx && m.Bc.cols() == m.B.cols()) {
+        bf = m.Bc.col(m.force_input);
+    } else {
+        Ag = Eigen::MatrixXd(m.A.log()) / Ts;
+        if (!Ag.allFinite()) return h;
+        Eigen::MatrixXd Phi, G;
+        zoh(Ag, Eigen::MatrixXd::Identity(nx, nx), Ts, Phi, G);
+        if (!((Phi - m.A).cwiseAbs().maxCoeff() <= 1e-8 * std::max(1.0, m.A.cwiseAbs().maxCoeff()))) return h;
+        Eigen::FullPivLU<Eigen::MatrixXd> lu(G);
+        if (!lu.isInvertible()) return h;
+        bf = lu.solve(Eigen::VectorXd(m.B.col(m.force_input)));
+    }
+    Eigen::MatrixXd Aj = Eigen::MatrixXd::Zero(nx + 2, nx + 2), Bj = Eigen::MatrixXd::Zero(nx + 2, 1), Ad, Bd;
+    Aj.topLeftCorner(nx, nx) = Ag;
+    Aj.block(0, nx, nx, 1) = bf;
+    Aj(nx, nx + 1) = 1;
+    Aj(nx + 1, nx) = -w * w;
+    Aj(nx + 1, nx + 1) = -2 * zeta * w;
+    Bj(nx + 1, 0) = w * w;
+    zoh(Aj, Bj, Ts, Ad, Bd);
+    if (!Ad.allFinite() || !Bd.allFinite()) return h;
+    h.Pxm = Ad.block(0, nx, nx, 2);
+    h.Gxa = Bd.col(0).head(nx);
+    h.exact = true;
+    return h;
+}
+
 }  // namespace
 
 ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effects, Eigen::Index n)
@@ -203,27 +276,14 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     Eigen::Vector2d Bm = Eigen::Vector2d::Zero();
     const double mode_w = 2 * M_PI * std::max(f_hz, 1e-6);
     // The mode in series at the force input: the plant is driven by eta
-    // (unit static gain) instead of the actuator's a. Over a sample the
-    // plant sees eta's mean, (1/Ts) int eta = Cs xm + Ds a, from the zero-
-    // order hold of [xm; int eta] (xm = [eta, eta'], a held), so that the
-    // series mode adds no half-sample lag of its own.
-    Eigen::Matrix2d As = Eigen::Matrix2d::Identity();
-    Eigen::Vector2d Bs = Eigen::Vector2d::Zero(), Cs = Eigen::Vector2d::Zero();
-    double Ds = 1.0;
-    if (series) {
-        const double w = mode_w;
-        Eigen::MatrixXd Ac = Eigen::MatrixXd::Zero(3, 3), Bc = Eigen::MatrixXd::Zero(3, 1), Ad, Bd;
-        Ac(0, 1) = 1;
-        Ac(1, 0) = -w * w;
-        Ac(1, 1) = -2 * zeta * w;
-        Ac(2, 0) = 1;
-        Bc(1, 0) = w * w;
-        zoh(Ac, Bc, Ts, Ad, Bd);
-        As = Ad.topLeftCorner(2, 2);
-        Bs = Bd.col(0).head(2);
-        Cs = Ad.row(2).head(2).transpose() / Ts;
-        Ds = Bd(2, 0) / Ts;
-    }
+    // (unit static gain) instead of the actuator's a; the plant input holds
+    // eta's mean over the sample, and the step adds the exact path's
+    // correction (series_mode_hold; zero where the plant has no generator).
+    const SeriesHold sh = series ? series_mode_hold(m, mode_w, zeta) : SeriesHold();
+    const Eigen::Matrix2d& As = sh.As;
+    const Eigen::Vector2d &Bs = sh.Bs, &Cs = sh.Cs;
+    const double Ds = sh.Ds;
+    std::vector<double> series_corr(size_t(nx), 0.0);
     double xs_m[2] = {0, 0};
     if (mode) {
         const double w = mode_w;
@@ -354,7 +414,11 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
         if (series) {
             if (first_sample) xs_m[0] = a, xs_m[1] = 0.0;  // the mode starts at rest under the first input
             series_in = a;
-            a = Cs(0) * xs_m[0] + Cs(1) * xs_m[1] + Ds * a;
+            const double mean = Cs(0) * xs_m[0] + Cs(1) * xs_m[1] + Ds * a;
+            if (sh.exact)
+                for (int i = 0; i < nx; ++i)
+                    series_corr[size_t(i)] = sh.Pxm(i, 0) * xs_m[0] + sh.Pxm(i, 1) * xs_m[1] + sh.Gxa(i) * a - m.B(i, fi) * mean;
+            a = mean;
         }
         up[size_t(fi)] = a;
         double f = 0.0;
@@ -376,6 +440,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
                     double vfree = -bv * f;
                     for (int j = 0; j < nx; ++j) vfree += cvA[size_t(j)] * x[size_t(j)];
                     for (int l = 0; l < nu; ++l) vfree += cvB[size_t(l)] * up[size_t(l)];
+                    for (int j = 0; j < nx; ++j) vfree += cv[size_t(j)] * series_corr[size_t(j)];
                     const double stop = vfree / bv, lv = std::fabs(level);
                     f += std::min(std::max(stop, -lv), lv);
                 } else {
@@ -432,7 +497,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
             double acc = 0;
             for (int j = 0; j < nx; ++j) acc += m.A(i, j) * x[size_t(j)];
             for (int j = 0; j < nu; ++j) acc += m.B(i, j) * up[size_t(j)];
-            xn[size_t(i)] = acc;
+            xn[size_t(i)] = acc + series_corr[size_t(i)];
         }
         for (int c = 0; c < ncp; ++c) {
             tr.twists(k, c) = twist_of(m.couplings[size_t(c)], x);

@@ -98,6 +98,10 @@ struct NominalModel {
     std::string name;
     double Ts = 0.0;
     Eigen::MatrixXd A, B, C, D;  // discrete at Ts
+    // The plant's generator x' = Ac x + Bc u when the document's plant is
+    // continuous (empty for a discrete one): the series mode's exact hold
+    // (replay.cpp, series_mode_hold).
+    Eigen::MatrixXd Ac, Bc;
     std::vector<std::string> inputs, outputs;
     bool closed_loop = false;
     ClosedLoop loop;
