@@ -546,6 +546,7 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
         }
     for (const Coupling& c : model.couplings) R.coupling_names.push_back(c.name);
     ReplaySetup fit_setup = make_replay_setup(model, data, opt.inputs, outs);
+    for (const PlantMode& pm : fit_setup.plant_modes) R.mode_names.push_back(plant_mode_name(pm));
     ReplaySetup eval_setup_v;
     if (validate) eval_setup_v = make_replay_setup(model, *validate, opt.inputs, outs);
     const ReplaySetup& eval_setup = validate ? eval_setup_v : fit_setup;
@@ -731,6 +732,8 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
             R.modes.push_back(mc);
         }
     }
+    // mode_shift's starts: each checked mode's measured peak.
+    for (const ModeCheck& mc : R.modes) ctx.mode_checks.push_back({mc.f_hz, mc.measured_peak_hz});
     // Where: time windows with their operating condition.
     {
         Eigen::VectorXd r = resn.rowwise().norm() / std::sqrt(double(outs.size()));
@@ -775,6 +778,13 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
                 cc.wq = cp.w_slow;
                 cc.coupling = site.second;
                 variants.push_back(descriptor(e).setup(cc, Site::coupling));
+            } else if (site.first == Site::mode) {
+                // mode_shift at one resonant plant mode (FitContext::mode_f_hz, mode_zeta).
+                FitContext cc = ctx;
+                cc.mode_f_hz = fit_setup.plant_modes[size_t(site.second)].f_hz;
+                cc.mode_zeta = fit_setup.plant_modes[size_t(site.second)].zeta;
+                cc.coupling = site.second;
+                variants.push_back(descriptor(e).setup(cc, Site::mode));
             } else if (needs_velocity(e) && model.velocity < 0) {
                 R.skipped.push_back(effect_name(e) + (model.couplings.empty() ? "" : " at the force input") +
                                     ": the model names no velocity output (gap.velocity)");
@@ -951,7 +961,8 @@ nlohmann::json fit_json(const GapResult& R, const FitReport& f, const std::vecto
         const EffectInstance& e = f.effects[i];
         sites.push_back(site_name(e.site));
         couplings.push_back(e.site == Site::coupling && size_t(e.coupling) < R.coupling_names.size()
-                                ? R.coupling_names[size_t(e.coupling)] : "");
+                                ? R.coupling_names[size_t(e.coupling)]
+                                : e.site == Site::mode && size_t(e.coupling) < R.mode_names.size() ? R.mode_names[size_t(e.coupling)] : "");
         const std::vector<ParamInfo> pn =
             descriptor(e.kind).params(R.outputs, units_at(R.units, e.site == Site::coupling ? e.coupling : -1), e.site);
         const std::string prefix = f.effects.size() > 1 ? effect_name(e.kind) + "." : "";
@@ -977,7 +988,7 @@ nlohmann::json bj = nlohmann::json::array();
     }
     j["effects"] = names;
     j["sites"] = sites;
-    j["couplings"] = couplings;  // the coupling's name for effects in a coupling, else ""
+    j["couplings"] = couplings;  // the coupling's name for effects in a coupling, the nominal mode's for mode_shift, else ""
 
     return j;
 }

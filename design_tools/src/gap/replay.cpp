@@ -82,6 +82,7 @@ ReplaySetup make_replay_setup(const NominalModel& m, const Signals& data, const 
     for (size_t c = 0; c < outputs.size(); ++c) s.measured.col(Eigen::Index(c)) = data.col(outputs[c]);
     if (s.compared.empty()) throw std::runtime_error("model/data mismatch: no model output is a column of " + data.source);
     s.x0 = initial_state(m, s, data, outputs);
+    s.plant_modes = resonant_plant_modes(m);
     if (m.closed_loop) {
         // The controller at the first sample: first references, measured outputs of x0.
         std::vector<double> r0(m.loop.references.size()), y0(m.loop.measured.size());
@@ -165,16 +166,21 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     const double cfc = T.cfc, calpha = T.calpha;
     const double f_hz = T.f_hz, zeta = T.zeta;
     const std::vector<double>&mode_gain = T.mode_gain, &offset = T.offset, &step = T.step;
+    // The plant's matrices: the nominal's, or with a mode moved (mode_shift).
+    // A coupling's sub-steps keep the nominal block's Phi: the change
+    // (A' - A) x + (B' - B) u then acts as forcing held over the sample.
+    const Eigen::MatrixXd& A = T.A.size() ? T.A : m.A;
+    const Eigen::MatrixXd& B = T.B.size() ? T.B : m.B;
 
     // Velocity row, and the velocity one step ahead: v(k+1) = cvA x(k) + cvB u(k).
     std::vector<double> cv(size_t(nx), 0.0), cvA(size_t(nx), 0.0), cvB(size_t(nu), 0.0);
     if (m.velocity >= 0) {
         for (int j = 0; j < nx; ++j) {
             cv[size_t(j)] = m.C(m.velocity, j);
-            for (int i = 0; i < nx; ++i) cvA[size_t(j)] += m.C(m.velocity, i) * m.A(i, j);
+            for (int i = 0; i < nx; ++i) cvA[size_t(j)] += m.C(m.velocity, i) * A(i, j);
         }
         for (int l = 0; l < nu; ++l)
-            for (int i = 0; i < nx; ++i) cvB[size_t(l)] += m.C(m.velocity, i) * m.B(i, l);
+            for (int i = 0; i < nx; ++i) cvB[size_t(l)] += m.C(m.velocity, i) * B(i, l);
     }
     const double bv = cvB[size_t(fi)];
     const double eps = s.eps_velocity;
@@ -395,8 +401,8 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
         tr.v(k) = v;
         for (int i = 0; i < nx; ++i) {
             double acc = 0;
-            for (int j = 0; j < nx; ++j) acc += m.A(i, j) * x[size_t(j)];
-            for (int j = 0; j < nu; ++j) acc += m.B(i, j) * up[size_t(j)];
+            for (int j = 0; j < nx; ++j) acc += A(i, j) * x[size_t(j)];
+            for (int j = 0; j < nu; ++j) acc += B(i, j) * up[size_t(j)];
             xn[size_t(i)] = acc;
         }
         for (int c = 0; c < ncp; ++c) {
