@@ -484,6 +484,25 @@ void check_nominal_replay(const NominalModel& model, const ReplayTrace& nom, con
 // held-out gap as the first within `margin` (shrink difference; a relative
 // gap difference would separate two fits that both reach the noise floor),
 // with the experiments that separate them.
+// A verdict holding both unmodelled_mode and mode_shift names the added
+// mode first: a mode coupled into the structure moves its neighbours
+// (interlacing), so the record's shifted mode is its consequence.
+void added_mode_first(FitReport& v)
+{
+    size_t iu = v.effects.size(), is = v.effects.size();
+    for (size_t i = 0; i < v.effects.size(); ++i) {
+        if (v.effects[i].kind == Effect::unmodelled_mode) iu = i;
+        if (v.effects[i].kind == Effect::mode_shift) is = i;
+    }
+    if (iu == v.effects.size() || is > iu) return;
+    auto to_front = [&](auto& vec) {
+        if (iu < vec.size()) std::rotate(vec.begin(), vec.begin() + long(iu), vec.begin() + long(iu) + 1);
+    };
+    to_front(v.effects);
+    to_front(v.stddev);
+    to_front(v.unidentified);
+}
+
 GapResult::Confidence confidence_of(const std::vector<FitReport>& candidates, const FitReport& verdict, double margin)
 {
     GapResult::Confidence c;
@@ -863,13 +882,17 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
               });
     // Nested effects: stribeck_friction contains coulomb_friction (Fs = Fc);
     // it ranks above it only when it lowers the held-out gap by the margin.
-    auto nested_rule = [&](auto& list, auto report_of) {
+    // Likewise mode_shift (any change seen at one mode: near a mode, Kelvin-
+    // Voigt damping in a spring or an added mode coupled to it moves that
+    // mode's frequency and damping) ranks above fractional_damping and
+    // unmodelled_mode, the mechanisms, only by the margin.
+    auto nested_rule = [&](auto& list, auto report_of, Effect contained, Effect container) {
         int ic = -1, is = -1;
         for (size_t i = 0; i < list.size(); ++i) {
             const FitReport& f = report_of(list[i]);
             if (f.effects.size() != 1) continue;
-            if (f.effects[0].kind == Effect::coulomb_friction) ic = int(i);
-            if (f.effects[0].kind == Effect::stribeck_friction) is = int(i);
+            if (f.effects[0].kind == contained) ic = int(i);
+            if (f.effects[0].kind == container) is = int(i);
         }
         if (ic > is && is >= 0 && report_of(list[size_t(is)]).gap > (1.0 - opt.margin) * report_of(list[size_t(ic)]).gap) {
             auto moved = list[size_t(ic)];
@@ -877,8 +900,13 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
             list.insert(list.begin() + is, moved);
         }
     };
-    nested_rule(R.candidates, [](const FitReport& f) -> const FitReport& { return f; });
-    nested_rule(singles, [](const std::pair<FitReport, EffectSetup>& p) -> const FitReport& { return p.first; });
+    for (const std::pair<Effect, Effect>& n : {std::pair<Effect, Effect>{Effect::coulomb_friction, Effect::stribeck_friction},
+                                               {Effect::fractional_damping, Effect::mode_shift},
+                                               {Effect::unmodelled_mode, Effect::mode_shift}}) {
+        nested_rule(R.candidates, [](const FitReport& f) -> const FitReport& { return f; }, n.first, n.second);
+        nested_rule(singles, [](const std::pair<FitReport, EffectSetup>& p) -> const FitReport& { return p.first; }, n.first,
+                    n.second);
+    }
 
     // Forward selection: add the best, refit all jointly, repeat while the
     // held-out gap shrinks by at least `margin` (relative) and the penalized score grows.
@@ -924,6 +952,7 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
         }
         R.verdict = best;
     }
+    added_mode_first(R.verdict);
     R.confidence = confidence_of(R.candidates, R.verdict, opt.margin);
 
     // Traces for the report.
