@@ -1067,7 +1067,7 @@ nlohmann::json result_json(const GapResult& R)
                       {"gap", "sqrt(mean over outputs of nrmse^2) on held-out data"},
                       {"shrink", "1 - gap_after/gap_before"},
                       {"score", "shrink - 0.005 * fitted parameters"},
-                      {"nesting", "stribeck_friction ranks above coulomb_friction only if its gap is >= 5 % (relative) lower"},
+                      {"nesting", "stribeck_friction ranks above coulomb_friction, mode_shift above fractional_damping and unmodelled_mode, only if its gap is >= 5 % (relative) lower; a verdict with unmodelled_mode and mode_shift names unmodelled_mode first"},
                       {"forward_selection", "add the best-scoring effect, refit jointly, keep it while the gap falls by >= 5 % (relative) and the score rises"}};
     j["data"] = {{"model", R.model_name}, {"fit", R.data_source}, {"held_out", R.eval_source},
                  {"fit_samples", R.fit_samples}, {"held_out_samples", R.eval_samples}, {"Ts", R.Ts}};
