@@ -66,6 +66,18 @@ TEST(SignalCsv, refuses_nan_naming_row_and_column)
     EXPECT_NE(m.find("non-finite"), std::string::npos) << m;
 }
 
+// A subnormal cell (strtod sets ERANGE on the underflow) is a finite value;
+// an overflowing one is not (found on a gap-bench arm record, case 29 of seed 1).
+TEST(SignalCsv, reads_a_subnormal_value_and_refuses_an_overflowing_one)
+{
+    const SignalTable t = parse_signal_csv("t,u\n0,-1.32005925e-311\n1,1e-320\n", "x.csv");
+    EXPECT_DOUBLE_EQ(t.column("u")[0], -1.32005925e-311);
+    EXPECT_GT(t.column("u")[1], 0.0);
+    const std::string m = error_of("t,u\n0,1\n1,-1e400\n");
+    EXPECT_NE(m.find("row 3, column 'u'"), std::string::npos) << m;
+    EXPECT_NE(m.find("non-finite"), std::string::npos) << m;
+}
+
 TEST(SignalCsv, refuses_ragged_row)
 {
     const std::string m = error_of("t,u,y\n0,1,2\n1,3\n");

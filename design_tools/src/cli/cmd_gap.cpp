@@ -159,9 +159,10 @@ CommandRegistrar reg({"gap", "diagnose the sim-to-real gap: where, which unmodel
                       "the record is held out and never fitted.\n\n"
                       "Effects: input_delay output_delay coulomb_friction viscous_friction\n"
                       "  stribeck_friction backlash deadzone saturation fractional_damping\n"
-                      "  unmodelled_mode gain_error sensor_offset quantization (and none). With a\n"
-                      "  gap.coupling section (a spring inside the plant, e.g. a gear), backlash and\n"
-                      "  fractional_damping are also fitted in that spring; the better site is kept.\n\n"
+                      "  unmodelled_mode gain_error sensor_offset quantization mode_shift (and none).\n"
+                      "  With a gap.coupling section (a spring inside the plant, e.g. a gear), backlash\n"
+                      "  and fractional_damping are also fitted in that spring; mode_shift is fitted at\n"
+                      "  each resonant mode of the plant; the best site is kept.\n\n"
                       "Writes DIR/result.json (schema frac.gap v1) and DIR/report.html (default DIR:\n"
                       "gap_out); --json prints result.json. See docs/gap.md.\n",
                       run_gap});

@@ -100,6 +100,7 @@ Baseline baseline(const NominalModel& model, const Signals& data, const Signals*
         }
     for (const Coupling& c : model.couplings) R.coupling_names.push_back(c.name);
     B.fit_setup = make_replay_setup(model, data, opt.inputs, outs);
+    for (const PlantMode& pm : B.fit_setup.plant_modes) R.mode_names.push_back(plant_mode_name(pm));
     B.validated = validate != nullptr;
     if (validate) B.eval_setup_v = make_replay_setup(model, *validate, opt.inputs, outs);
     const Eigen::Index N = B.N = data.samples();

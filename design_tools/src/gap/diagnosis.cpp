@@ -16,7 +16,7 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
     // The nominal replayed on the checked record, split into fit and
     // held-out rows; the fits' context from it.
     Baseline B = baseline(model, data, validate, opt, R);
-    const FitContext ctx = fit_context(B, data, R);
+    FitContext ctx = fit_context(B, data, R);
     // Friction's smooth sign tanh(v / eps) in every later replay: eps = 1 %
     // of the nominal's rms velocity (ReplaySetup::eps_velocity).
     B.fit_setup.eps_velocity = 0.01 * ctx.Sv;
@@ -24,6 +24,8 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
     const Evaluator E = held_out(B, data, R);
 
     where(B, model, data, R);
+    // mode_shift's starts: each checked mode's measured peak.
+    for (const ModeCheck& mc : R.modes) ctx.mode_checks.push_back({mc.f_hz, mc.measured_peak_hz});
 
     // Which: every candidate alone.
     FitProblem base_problem;

@@ -350,6 +350,46 @@ const std::vector<EffectDescriptor>& catalog()
          [](const std::vector<double>& p, Site, const ReplaySetup& s, ReplayTerms& t) {
              per_model_output(p, replay_compared(s), 0, t.step, true);
          }},
+        {Effect::mode_shift, "mode_shift",
+         "one resonant mode of the nominal plant at f' and zeta' instead of its own (its eigenvalue pair moved, its "
+         "continuous input and output maps kept)", false, {Site::mode},
+         "a frequency sweep through the mode (the frequency and the width of its peak); a mode at the nominal's own "
+         "frequency that is missing from the record's spectrum, or a new peak beside it, tells an added mode apart",
+         [](const std::vector<std::string>&, const Units&, Site) {
+             return std::vector<ParamInfo>{{"f_hz", "Hz"}, {"zeta", "1"}};
+         },
+         [](const FitContext& c, Site) {
+             // f' within 1/2 .. 2 x the nominal f0 (and the band the record
+             // resolves), zeta' in 0.001 .. 0.7; normalized f'/f0, zeta'/zeta_s.
+             EffectSetup s{Effect::mode_shift, Site::mode, c.coupling, {}, {}, true};
+             const double f0 = c.mode_f_hz, zs = std::max(c.mode_zeta, 0.01);
+             const double rlo = std::max(0.5, 2.0 / c.fit_seconds / f0), rhi = std::min(2.0, 0.45 / c.Ts / f0);
+             if (!(f0 > 0) || !(rlo < rhi)) return s;
+             s.spec = {{f0, rlo, rhi, false}, {zs, 1e-3 / zs, 0.7 / zs, false}};
+             // Starts: the where stage's measured peak of each checked mode
+             // within f0/1.5 .. 1.5 f0 (a loop's mode checks stand for the
+             // plant's: their ratio measured/checked is applied to f0), the
+             // residual's peaks, a grid of ratios 2^(k/8) over the bounds; at
+             // each the nominal damping and 3 x it; at f0 also zeta0 / 3 (a
+             // mode only mis-damped). Screened.
+             std::vector<double> rs;
+             for (const std::pair<double, double>& mc : c.mode_checks)
+                 if (mc.second > 0 && mc.first > f0 / 1.5 && mc.first < 1.5 * f0) rs.push_back(mc.second / mc.first);
+             for (double f : c.residual_peaks_hz) rs.push_back(f / f0);
+             for (int k = -8; k <= 8; ++k) rs.push_back(std::pow(2.0, k / 8.0));
+             const double z0 = std::max(c.mode_zeta, 1e-3);
+             for (double r : rs) {
+                 if (r < rlo || r > rhi) continue;
+                 for (double z : {z0, std::min(3 * z0, 0.6)}) s.starts.push_back({r, z / zs});
+             }
+             s.starts.push_back({1.0, z0 / 3 / zs});
+             return s;
+         },
+         [](const std::vector<double>& p, Site, const ReplaySetup& s, ReplayTerms& t) {
+             if (t.coupling < 0 || size_t(t.coupling) >= s.plant_modes.size())
+                 throw std::logic_error("mode_shift: no resonant plant mode " + std::to_string(t.coupling));
+             shift_plant_mode(s.plant_modes[size_t(t.coupling)], s.model->Ts, p[0], p[1], s.model->A, s.model->B, t.A, t.B);
+         }},
     };
     return v;
 }
@@ -405,6 +445,7 @@ std::string site_name(Site s)
     case Site::force_input: return "force_input";
     case Site::coupling: return "coupling";
     case Site::output: return "output";
+    case Site::mode: return "mode";
     }
     return "force_input";
 }
@@ -412,6 +453,7 @@ std::string site_name(Site s)
 std::string site_phrase(const std::string& effect, const std::string& site, const std::string& coupling)
 {
     if (site == "coupling") return " (in the coupling '" + coupling + "')";
+    if (site == "mode") return " (the nominal's " + coupling + ")";
     if (site == "output") return " (at the outputs)";
     if (site == "force_input" && effect == "unmodelled_mode") return " (in series at the force input)";
     return "";
@@ -421,9 +463,12 @@ std::vector<std::pair<Site, int>> effect_sites(Effect e, const NominalModel& m)
 {
     std::vector<std::pair<Site, int>> v;
     for (Site s : descriptor(e).sites) {
-        if (s != Site::coupling) v.push_back({s, 0});
-        else
+        if (s == Site::coupling)
             for (size_t i = 0; i < m.couplings.size(); ++i) v.push_back({s, int(i)});
+        else if (s == Site::mode)
+            for (size_t i = 0, n = resonant_plant_modes(m).size(); i < n; ++i) v.push_back({s, int(i)});
+        else
+            v.push_back({s, 0});
     }
     return v;
 }

@@ -2,6 +2,7 @@
 // forward selection of the effect set from the ranked single fits, the
 // verdict's confidence, and the traces the report plots (see stages.hpp,
 // docs/gap.md).
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -20,6 +21,25 @@ namespace {
 // held-out gap as the first within `margin` (shrink difference; a relative
 // gap difference would separate two fits that both reach the noise floor),
 // with the experiments that separate them.
+// A verdict holding both unmodelled_mode and mode_shift names the added
+// mode first: a mode coupled into the structure moves its neighbours
+// (interlacing), so the record's shifted mode is its consequence.
+void added_mode_first(FitReport& v)
+{
+    size_t iu = v.effects.size(), is = v.effects.size();
+    for (size_t i = 0; i < v.effects.size(); ++i) {
+        if (v.effects[i].kind == Effect::unmodelled_mode) iu = i;
+        if (v.effects[i].kind == Effect::mode_shift) is = i;
+    }
+    if (iu == v.effects.size() || is > iu) return;
+    auto to_front = [&](auto& vec) {
+        if (iu < vec.size()) std::rotate(vec.begin(), vec.begin() + long(iu), vec.begin() + long(iu) + 1);
+    };
+    to_front(v.effects);
+    to_front(v.stddev);
+    to_front(v.unidentified);
+}
+
 GapResult::Confidence confidence_of(const std::vector<FitReport>& candidates, const FitReport& verdict, double margin)
 {
     GapResult::Confidence c;
@@ -127,6 +147,7 @@ void how_far(const std::vector<std::pair<FitReport, EffectSetup>>& singles, cons
         }
         R.verdict = best;
     }
+    added_mode_first(R.verdict);
     R.confidence = confidence_of(R.candidates, R.verdict, opt.margin);
 }
 

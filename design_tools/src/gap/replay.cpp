@@ -101,6 +101,7 @@ ReplaySetup make_replay_setup(const NominalModel& m, const Signals& data, const 
         s.hold_phase.push_back(phase);
     }
     s.x0 = initial_state(m, s, data, outputs);
+    s.plant_modes = resonant_plant_modes(m);
     if (m.closed_loop) {
         // The controller at the first sample: first references, measured outputs of x0.
         std::vector<double> r0(m.loop.references.size()), y0(m.loop.measured.size());
@@ -255,16 +256,21 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     const double cfc = T.cfc, calpha = T.calpha;
     const double f_hz = T.f_hz, zeta = T.zeta;
     const std::vector<double>&mode_gain = T.mode_gain, &offset = T.offset, &step = T.step;
+    // The plant's matrices: the nominal's, or with a mode moved (mode_shift).
+    // A coupling's sub-steps keep the nominal block's Phi: the change
+    // (A' - A) x + (B' - B) u then acts as forcing held over the sample.
+    const Eigen::MatrixXd& A = T.A.size() ? T.A : m.A;
+    const Eigen::MatrixXd& B = T.B.size() ? T.B : m.B;
 
     // Velocity row, and the velocity one step ahead: v(k+1) = cvA x(k) + cvB u(k).
     std::vector<double> cv(size_t(nx), 0.0), cvA(size_t(nx), 0.0), cvB(size_t(nu), 0.0);
     if (m.velocity >= 0) {
         for (int j = 0; j < nx; ++j) {
             cv[size_t(j)] = m.C(m.velocity, j);
-            for (int i = 0; i < nx; ++i) cvA[size_t(j)] += m.C(m.velocity, i) * m.A(i, j);
+            for (int i = 0; i < nx; ++i) cvA[size_t(j)] += m.C(m.velocity, i) * A(i, j);
         }
         for (int l = 0; l < nu; ++l)
-            for (int i = 0; i < nx; ++i) cvB[size_t(l)] += m.C(m.velocity, i) * m.B(i, l);
+            for (int i = 0; i < nx; ++i) cvB[size_t(l)] += m.C(m.velocity, i) * B(i, l);
     }
     const int ffi = m.friction_input;
     const double bv = cvB[size_t(ffi)];
@@ -417,7 +423,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
             const double mean = Cs(0) * xs_m[0] + Cs(1) * xs_m[1] + Ds * a;
             if (sh.exact)
                 for (int i = 0; i < nx; ++i)
-                    series_corr[size_t(i)] = sh.Pxm(i, 0) * xs_m[0] + sh.Pxm(i, 1) * xs_m[1] + sh.Gxa(i) * a - m.B(i, fi) * mean;
+                    series_corr[size_t(i)] = sh.Pxm(i, 0) * xs_m[0] + sh.Pxm(i, 1) * xs_m[1] + sh.Gxa(i) * a - B(i, fi) * mean;
             a = mean;
         }
         up[size_t(fi)] = a;
@@ -495,8 +501,8 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
         tr.v(k) = v;
         for (int i = 0; i < nx; ++i) {
             double acc = 0;
-            for (int j = 0; j < nx; ++j) acc += m.A(i, j) * x[size_t(j)];
-            for (int j = 0; j < nu; ++j) acc += m.B(i, j) * up[size_t(j)];
+            for (int j = 0; j < nx; ++j) acc += A(i, j) * x[size_t(j)];
+            for (int j = 0; j < nu; ++j) acc += B(i, j) * up[size_t(j)];
             xn[size_t(i)] = acc + series_corr[size_t(i)];
         }
         for (int c = 0; c < ncp; ++c) {

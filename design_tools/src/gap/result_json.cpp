@@ -29,7 +29,8 @@ nlohmann::json fit_json(const GapResult& R, const FitReport& f, const std::vecto
         const EffectInstance& e = f.effects[i];
         sites.push_back(site_name(e.site));
         couplings.push_back(e.site == Site::coupling && size_t(e.coupling) < R.coupling_names.size()
-                                ? R.coupling_names[size_t(e.coupling)] : "");
+                                ? R.coupling_names[size_t(e.coupling)]
+                                : e.site == Site::mode && size_t(e.coupling) < R.mode_names.size() ? R.mode_names[size_t(e.coupling)] : "");
         const std::vector<ParamInfo> pn =
             descriptor(e.kind).params(R.outputs, units_at(R.units, e.site == Site::coupling ? e.coupling : -1), e.site);
         const std::string prefix = f.effects.size() > 1 ? effect_name(e.kind) + "." : "";
@@ -55,7 +56,7 @@ nlohmann::json bj = nlohmann::json::array();
     }
     j["effects"] = names;
     j["sites"] = sites;
-    j["couplings"] = couplings;  // the coupling's name for effects in a coupling, else ""
+    j["couplings"] = couplings;  // the coupling's name for effects in a coupling, the nominal mode's for mode_shift, else ""
 
     return j;
 }
@@ -105,7 +106,7 @@ nlohmann::json result_json(const GapResult& R)
                       {"gap", "sqrt(mean over outputs of nrmse^2) on held-out data"},
                       {"shrink", "1 - gap_after/gap_before"},
                       {"score", "shrink - 0.005 * fitted parameters"},
-                      {"nesting", "stribeck_friction ranks above coulomb_friction only if its gap is >= 5 % (relative) lower"},
+                      {"nesting", "stribeck_friction ranks above coulomb_friction, mode_shift above fractional_damping and unmodelled_mode, only if its gap is >= 5 % (relative) lower; a verdict with unmodelled_mode and mode_shift names unmodelled_mode first"},
                       {"forward_selection", "add the best-scoring effect, refit jointly, keep it while the gap falls by >= 5 % (relative) and the score rises"}};
     j["data"] = {{"model", R.model_name}, {"fit", R.data_source}, {"held_out", R.eval_source},
                  {"fit_samples", R.fit_samples}, {"held_out_samples", R.eval_samples}, {"Ts", R.Ts}};

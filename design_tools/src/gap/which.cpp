@@ -58,6 +58,13 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
                 cc.wq = cp.w_slow;
                 cc.coupling = site.second;
                 variants.push_back(descriptor(e).setup(cc, Site::coupling));
+            } else if (site.first == Site::mode) {
+                // mode_shift at one resonant plant mode (FitContext::mode_f_hz, mode_zeta).
+                FitContext cc = ctx;
+                cc.mode_f_hz = B.fit_setup.plant_modes[size_t(site.second)].f_hz;
+                cc.mode_zeta = B.fit_setup.plant_modes[size_t(site.second)].zeta;
+                cc.coupling = site.second;
+                variants.push_back(descriptor(e).setup(cc, Site::mode));
             } else if (needs_velocity(e) && model.velocity < 0) {
                 R.skipped.push_back(effect_name(e) + (model.couplings.empty() ? "" : " at the force input") +
                                     ": the model names no velocity output (gap.velocity)");
@@ -134,13 +141,17 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
               });
     // Nested effects: stribeck_friction contains coulomb_friction (Fs = Fc);
     // it ranks above it only when it lowers the held-out gap by the margin.
-    auto nested_rule = [&](auto& list, auto report_of) {
+    // Likewise mode_shift (any change seen at one mode: near a mode, Kelvin-
+    // Voigt damping in a spring or an added mode coupled to it moves that
+    // mode's frequency and damping) ranks above fractional_damping and
+    // unmodelled_mode, the mechanisms, only by the margin.
+    auto nested_rule = [&](auto& list, auto report_of, Effect contained, Effect container) {
         int ic = -1, is = -1;
         for (size_t i = 0; i < list.size(); ++i) {
             const FitReport& f = report_of(list[i]);
             if (f.effects.size() != 1) continue;
-            if (f.effects[0].kind == Effect::coulomb_friction) ic = int(i);
-            if (f.effects[0].kind == Effect::stribeck_friction) is = int(i);
+            if (f.effects[0].kind == contained) ic = int(i);
+            if (f.effects[0].kind == container) is = int(i);
         }
         if (ic > is && is >= 0 && report_of(list[size_t(is)]).gap > (1.0 - opt.margin) * report_of(list[size_t(ic)]).gap) {
             auto moved = list[size_t(ic)];
@@ -148,8 +159,13 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
             list.insert(list.begin() + is, moved);
         }
     };
-    nested_rule(R.candidates, [](const FitReport& f) -> const FitReport& { return f; });
-    nested_rule(singles, [](const std::pair<FitReport, EffectSetup>& p) -> const FitReport& { return p.first; });
+    for (const std::pair<Effect, Effect>& n : {std::pair<Effect, Effect>{Effect::coulomb_friction, Effect::stribeck_friction},
+                                               {Effect::fractional_damping, Effect::mode_shift},
+                                               {Effect::unmodelled_mode, Effect::mode_shift}}) {
+        nested_rule(R.candidates, [](const FitReport& f) -> const FitReport& { return f; }, n.first, n.second);
+        nested_rule(singles, [](const std::pair<FitReport, EffectSetup>& p) -> const FitReport& { return p.first; }, n.first,
+                    n.second);
+    }
     return singles;
 }
 

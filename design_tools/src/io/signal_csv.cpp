@@ -85,7 +85,11 @@ NumericCsv parse_numeric_csv(const std::string& text, const std::string& origin)
             errno = 0;
             const double v = std::strtod(c.c_str(), &end);
             if (end == c.c_str() || *end != '\0') fail(origin, row, out.header[j], "not a number: '" + c + "'");
-            if (!std::isfinite(v) || errno == ERANGE) fail(origin, row, out.header[j], "non-finite value '" + c + "'");
+            // ERANGE is also set on underflow (a subnormal such as a
+            // rig's -1.3e-311, returned as the nearest representable value,
+            // finite): only an overflow (|v| = HUGE_VAL) is refused.
+            if (!std::isfinite(v) || (errno == ERANGE && std::fabs(v) > 1.0))
+                fail(origin, row, out.header[j], "non-finite value '" + c + "'");
             out.columns[j].push_back(v);
         }
         out.file_row.push_back(row);

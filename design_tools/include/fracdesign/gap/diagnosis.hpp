@@ -68,6 +68,7 @@ struct GapResult {
     std::vector<std::string> outputs;
     Units units;                                    // of the model's signals (gap.units)
     std::vector<std::string> coupling_names;        // the model's couplings (gap.coupling), in order
+    std::vector<std::string> mode_names;            // the plant's resonant modes (mode_shift's sites), in order
     Eigen::Index fit_samples = 0, eval_first = 0, eval_samples = 0;
     std::vector<double> gap_before;                 // nrmse per output, held-out
     double gap_before_total = 0.0;

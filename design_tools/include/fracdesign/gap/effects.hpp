@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "fracdesign/gap/mode_shift.hpp"
 #include "fracdesign/gap/nominal.hpp"
 #include "fracdesign/gap/signals.hpp"
 
@@ -30,7 +31,8 @@ enum class Effect {
     unmodelled_mode,
     gain_error,
     sensor_offset,
-    quantization
+    quantization,
+    mode_shift
 };
 
 const std::vector<Effect>& all_effects();
@@ -43,20 +45,23 @@ Effect effect_from_name(const std::string& name);  // std::invalid_argument if u
 // modes: a play in the deflection, c D^alpha of the deflection in parallel
 // with the spring (Kelvin-Voigt). The unmodelled mode acts in series at the
 // force input (between the actuator and the plant) or at the outputs (a
-// sensor-side resonance).
-enum class Site { force_input, coupling, output };
+// sensor-side resonance). The mode shift acts on one resonant mode of the
+// nominal plant (mode_shift.hpp), one site per mode.
+enum class Site { force_input, coupling, output, mode };
 struct EffectInstance {
     Effect kind;
     std::vector<double> params;  // physical values, in the order of param_names()
     Site site = Site::force_input;
-    int coupling = 0;            // Site::coupling: index into NominalModel::couplings
+    int coupling = 0;            // Site::coupling: index into NominalModel::couplings;
+                                 // Site::mode: index into resonant_plant_modes()
 };
 // The site's name in result.json: "force_input", "output", or "coupling".
 std::string site_name(Site s);
 // How the CLI and the report say where an effect of result.json acts
 // (effect name, site name, coupling name): "" at the force input, else
 // e.g. " (in the coupling 'gear')", " (at the outputs)", " (in series at
-// the force input)" for the mode.
+// the force input)" for the mode, " (the nominal's mode at 12.3 Hz, zeta
+// 0.02)" for a mode shift (result.json's coupling field names the mode).
 std::string site_phrase(const std::string& effect, const std::string& site, const std::string& coupling);
 
 // The parameters' units come from the model document's optional gap.units
@@ -105,6 +110,11 @@ struct FitContext {
     std::vector<double> quant_step;         // lattice step of each compared output (0: not quantized)
     std::vector<double> residual_peaks_hz;  // largest peaks of the nominal residual spectrum
     long fit_samples = 0;
+    // The nominal plant mode a set-up is for (Site::mode, index in
+    // `coupling`): its frequency [Hz] and damping; and the where stage's
+    // mode checks (diagnosis.hpp ModeCheck): (f checked, measured peak) [Hz].
+    double mode_f_hz = 0, mode_zeta = 0;
+    std::vector<std::pair<double, double>> mode_checks;
 };
 
 // The replay's terms (effects.cpp, replay()): what the effects set, the
@@ -130,6 +140,7 @@ struct ReplayTerms {
     bool series_mode = false;         // the mode in series at the force input
     double f_hz = 1, zeta = 0.1;
     std::vector<double> mode_gain, offset, step;              // per model output
+    Eigen::MatrixXd A, B;             // the plant with a nominal mode moved (mode_shift; empty: the nominal's)
 };
 
 // The data a replay runs on (below).
@@ -166,7 +177,8 @@ bool needs_velocity(Effect e);
 bool coupling_capable(Effect e);
 // Parameter names of an effect at a site; `outputs` are the compared outputs (per-channel parameters).
 std::vector<std::string> param_names(Effect e, const std::vector<std::string>& outputs, Site site = Site::force_input);
-// The sites the diagnosis tries for an effect on this model (coupling: once per declared coupling).
+// The sites the diagnosis tries for an effect on this model (coupling: once per declared coupling;
+// mode: once per resonant plant mode, resonant_plant_modes).
 std::vector<std::pair<Site, int>> effect_sites(Effect e, const NominalModel& m);
 // `u` with the deflection unit of coupling `coupling`.
 Units units_at(const Units& u, int coupling);
@@ -192,6 +204,7 @@ struct ReplaySetup {
     std::vector<int> hold_phase;
     double eps_velocity = 1.0;         // sign(v) ~ tanh(v/eps) where the force input does not reach v in one step
     int fractional_memory = 256;       // Grunwald-Letnikov memory, samples (a coupling's: coupling_gl_memory)
+    std::vector<PlantMode> plant_modes;  // the nominal's resonant modes, the mode_shift sites (mode_shift.hpp)
 
     Eigen::Index samples() const { return exo.rows(); }
 };

@@ -1,0 +1,49 @@
+// mode_shift.hpp - a resonant mode of the nominal plant moved to another
+// frequency and damping (the mode_shift effect, docs/gap.md "mode_shift").
+//
+// The plant is the nominal's discrete x(k+1) = A x(k) + B u(k) at Ts, of any
+// realization (modal or not, with delay states). A resonant mode is a simple
+// complex eigenvalue pair z, conj(z) of A with continuous equivalent
+// s = log(z)/Ts = -zeta w + i w sqrt(1 - zeta^2), zeta < 1/sqrt(2). With its
+// right and left eigenvectors v, w (A v = z v, w A = z w, w v = 1) the
+// spectral projector P = v w splits off the pair; moving it to s' (f', zeta')
+// with the mode's continuous input and output maps kept is
+//   A' = A + 2 Re[(z' - z) P],                       z' = e^{s' Ts}
+//   B' = B + 2 Re[(g' / g - 1) P B],                 g = (z - 1)/s, g' = (z' - 1)/s'
+// (zero-order hold of the mode's block: its discrete input map is g times its
+// continuous one), C and D unchanged. This is the real modal (block-diagonal)
+// form's 2x2 block of the pair replaced, written without transforming the
+// other states (so a defective remainder, e.g. a chain of delay states at
+// z = 0, needs no diagonalisation). Every other eigenvalue of A stays.
+#pragma once
+#include <Eigen/Dense>
+#include <complex>
+#include <vector>
+
+#include "fracdesign/gap/nominal.hpp"
+
+namespace fracdesign {
+namespace gap {
+
+struct PlantMode {
+    double f_hz = 0, zeta = 0;     // continuous equivalent of the pair
+    std::complex<double> z;        // discrete eigenvalue (Im z > 0)
+    Eigen::VectorXcd v;            // right eigenvector
+    Eigen::RowVectorXcd w;         // left eigenvector, w v = 1
+};
+
+// The resonant modes of the open-loop plant A (not the loop's): simple
+// complex pairs with zeta < 1/sqrt(2) and f <= 0.4/Ts (the band the where
+// stage checks, diagnosis.cpp ModeCheck), slowest first. A pair closer than
+// 1e-6 |z| to another eigenvalue is left out (its projector is ill-defined).
+std::vector<PlantMode> resonant_plant_modes(const NominalModel& m);
+
+// A' and B' of the plant with mode `pm` moved to f_hz, zeta (equations above).
+void shift_plant_mode(const PlantMode& pm, double Ts, double f_hz, double zeta, const Eigen::MatrixXd& A,
+                      const Eigen::MatrixXd& B, Eigen::MatrixXd& A2, Eigen::MatrixXd& B2);
+
+// How the report names the mode: "mode at 12.3 Hz, zeta 0.021".
+std::string plant_mode_name(const PlantMode& pm);
+
+}  // namespace gap
+}  // namespace fracdesign
