@@ -109,7 +109,10 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
                                  effect_name(jobs[i].setup.kind) +
                                  (jobs[i].setup.site == Site::coupling
                                       ? " in the coupling '" + model.couplings[size_t(jobs[i].setup.coupling)].name + "'"
-                                      : jobs[i].setup.site == Site::output ? " at the outputs" : "") + ")");
+                                      : jobs[i].setup.site == Site::output ? " at the outputs"
+                                      : jobs[i].setup.site == Site::mode && size_t(jobs[i].setup.coupling) < R.mode_names.size()
+                                          ? " at the " + R.mode_names[size_t(jobs[i].setup.coupling)]
+                                          : "") + ")");
             }
         };
         const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
