@@ -50,19 +50,13 @@ stage "4/4 gap diagnosis of the recorded run, ArmCtrl in the replay (gap-plc)"
 # The rig's CSV does not log when the PLC's tasks start (the controller node starts them once the
 # drive is enabled and an IMU reading came): the record gets a column `run`, 1 from the first sample
 # whose command is nonzero, and the nominal maps it to ArmCtrl's Run.
-$py - hil/signals.csv hil/record.csv nominal.json <<'EOF'
-import csv, json, sys
-rows = list(csv.reader(open(sys.argv[1])))
-k = rows[0].index("torque_cmd")
-first = next(i for i, r in enumerate(rows[1:]) if float(r[k]) != 0.0)
-w = csv.writer(open(sys.argv[2], "w"))
-w.writerow(rows[0] + ["run"])
-for i, r in enumerate(rows[1:]):
-    w.writerow(r + ["1" if i >= first else "0"])
-n = json.load(open(sys.argv[3]))
+$py "$src/scripts/add_run_column.py" hil/signals.csv hil/record.csv
+$py - nominal.json <<'EOF'
+import json, sys
+n = json.load(open(sys.argv[1]))
 n["gap"]["closed_loop"]["references"] = ["run"]
 n["gap"]["closed_loop"]["controller"]["inputs"]["Run"] = "run"
-json.dump(n, open(sys.argv[3], "w"), indent=1)
+json.dump(n, open(sys.argv[1], "w"), indent=1)
 EOF
 run "$gapplc" --model nominal.json --data hil/record.csv --out gap > gap.txt || { echo "demo: gap-plc failed"; exit 1; }
 verdict=$($py -c 'import json,sys; v=json.load(open(sys.argv[1]))["verdict"]

@@ -28,7 +28,7 @@ fc=$($py -c "print(0.1 * float('$rated'))")
 # The rig's CSV does not log when the PLC's tasks start (the controller node starts them once the drive is
 # enabled and an IMU reading came): the records get a column `run`, 1 from the first sample whose command
 # is nonzero (the gyro noise makes the first task cycle's command nonzero), and the nominal maps it to Run.
-for r in clean quiet coulomb; do $py "$here/add_run_column.py" $r/signals.csv $r/record.csv; done
+for r in clean quiet coulomb; do $py "$here/../../scripts/add_run_column.py" $r/signals.csv $r/record.csv; done
 $py - nominal.json nominal_run.json <<'PY'
 import json, sys
 n = json.load(open(sys.argv[1]))

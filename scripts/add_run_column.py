@@ -1,4 +1,4 @@
-"""add_run_column.py IN.csv OUT.csv: the rig record with a column `run`, 1 from the first sample whose
+"""add_run_column.py IN.csv OUT.csv (make demo, tests/plc_replay): the rig record with a column `run`, 1 from the first sample whose
 torque_cmd is nonzero (when the PLC's tasks started), 0 before."""
 import csv
 import sys
