@@ -93,24 +93,16 @@ struct Run {
     Eigen::VectorXd ref, cmd;
 };
 
-// noise == nullptr: noise-free.
-Run simulate(const Plant& p, const Injection& in, hil_rng* noise)
+// The axis's linear part, z = [theta, v, eta, eta'] with inputs [u, F] (F the
+// dry friction force, V at the drive input, opposing):
+//   J v' = Ka (d - Fv v - F) - b v,  d = eta with the mode, else u;
+//   eta'' = wm^2 (u - eta) - 2 zeta wm eta'.
+// Without the mode, eta and eta' stay at zero and do not act.
+void axis_generator(const Plant& p, const Injection& in, Eigen::MatrixXd& Ac, Eigen::MatrixXd& Bc)
 {
-    const long N = long(std::lround(kDuration / kTs));
-    Run out;
-    out.y.resize(N, 2);
-    out.ref.resize(N);
-    out.cmd.resize(N);
-    double e_prev = 0, d_prev = 0;
-    const int dl = kCompDelay + in.extra_delay;
-    std::vector<double> cbuf(size_t(dl) + 1, 0.0), vbuf(size_t(in.vel_delay) + 1, 0.0), pbuf(size_t(in.pos_delay) + 1, 0.0);
-    // The linear part z = [theta, v, eta, eta'] with inputs [u, F] (F the
-    // dry friction force, V at the drive input, opposing):
-    //   J v' = Ka (d - Fv v - F) - b v,  d = eta with the mode, else u;
-    //   eta'' = wm^2 (u - eta) - 2 zeta wm eta'.
-    // Exact zero-order hold over a sub-step: z+ = Phi z + Gam [u; F].
-    const double h = kTs / kSub, wm = 2 * M_PI * in.mode_hz;
-    Eigen::MatrixXd Ac = Eigen::MatrixXd::Zero(4, 4), Bc = Eigen::MatrixXd::Zero(4, 2), Phi, Gam;
+    const double wm = 2 * M_PI * in.mode_hz;
+    Ac = Eigen::MatrixXd::Zero(4, 4);
+    Bc = Eigen::MatrixXd::Zero(4, 2);
     Ac(0, 1) = 1;
     Ac(1, 1) = -(p.b + p.Ka * in.Fv) / p.J;
     Bc(1, 1) = -p.Ka / p.J;
@@ -123,6 +115,24 @@ Run simulate(const Plant& p, const Injection& in, hil_rng* noise)
     } else {
         Bc(1, 0) = p.Ka / p.J;
     }
+}
+
+// noise == nullptr: noise-free.
+Run simulate(const Plant& p, const Injection& in, hil_rng* noise)
+{
+    const long N = long(std::lround(kDuration / kTs));
+    Run out;
+    out.y.resize(N, 2);
+    out.ref.resize(N);
+    out.cmd.resize(N);
+    double e_prev = 0, d_prev = 0;
+    const int dl = kCompDelay + in.extra_delay;
+    std::vector<double> cbuf(size_t(dl) + 1, 0.0), vbuf(size_t(in.vel_delay) + 1, 0.0), pbuf(size_t(in.pos_delay) + 1, 0.0);
+    // The linear part (axis_generator), exact zero-order hold over a
+    // sub-step: z+ = Phi z + Gam [u; F].
+    const double h = kTs / kSub;
+    Eigen::MatrixXd Ac, Bc, Phi, Gam;
+    axis_generator(p, in, Ac, Bc);
     fracdesign::gap::zoh(Ac, Bc, h, Phi, Gam);
     Eigen::Vector4d z = Eigen::Vector4d::Zero();
     auto gauss = [&](double s) {
@@ -175,19 +185,10 @@ double loop_damping(const Plant& p, const Injection& in)
 {
     const bool mode = in.mode_hz > 0;
     const int np = mode ? 4 : 2, dl = kCompDelay + in.extra_delay, dp = in.pos_delay;
-    Eigen::MatrixXd Ac = Eigen::MatrixXd::Zero(np, np), Bc = Eigen::MatrixXd::Zero(np, 1), Ad, Bd;
-    Ac(0, 1) = 1;
-    Ac(1, 1) = -(p.b + p.Ka * in.Fv) / p.J;
-    if (mode) {
-        const double wm = 2 * M_PI * in.mode_hz;
-        Ac(1, 2) = p.Ka / p.J;
-        Ac(2, 3) = 1;
-        Ac(3, 2) = -wm * wm;
-        Ac(3, 3) = -2 * in.mode_zeta * wm;
-        Bc(3, 0) = wm * wm;
-    } else {
-        Bc(1, 0) = p.Ka / p.J;
-    }
+    Eigen::MatrixXd Ac4, Bc4, Ad, Bd;
+    axis_generator(p, in, Ac4, Bc4);
+    // Without the mode, eta and eta' are decoupled from the axis: its 2 states, driven by u.
+    const Eigen::MatrixXd Ac = Ac4.topLeftCorner(np, np), Bc = Bc4.topLeftCorner(np, 1);
     fracdesign::gap::zoh(Ac, Bc, kTs, Ad, Bd);
     // State: plant (np), position readings theta(k-1..k-dp) (dp), e_{k-1}, d_{k-1}, commands c(k-1..k-dl).
     const int ip = np, ie = ip + dp, id = ie + 1, ic = id + 1, n = ic + dl;
