@@ -28,9 +28,7 @@ nlohmann::json fit_json(const GapResult& R, const FitReport& f, const std::vecto
     for (size_t i = 0; i < f.effects.size(); ++i) {
         const EffectInstance& e = f.effects[i];
         sites.push_back(site_name(e.site));
-        couplings.push_back(e.site == Site::coupling && size_t(e.coupling) < R.coupling_names.size()
-                                ? R.coupling_names[size_t(e.coupling)]
-                                : e.site == Site::mode && size_t(e.coupling) < R.mode_names.size() ? R.mode_names[size_t(e.coupling)] : "");
+        couplings.push_back(site_subject(R, e.site, e.coupling));
         const std::vector<ParamInfo> pn =
             descriptor(e.kind).params(R.outputs, units_at(R.units, e.site == Site::coupling ? e.coupling : -1), e.site);
         const std::string prefix = f.effects.size() > 1 ? effect_name(e.kind) + "." : "";
@@ -62,6 +60,13 @@ nlohmann::json bj = nlohmann::json::array();
 }
 
 }  // namespace
+
+std::string site_subject(const GapResult& R, Site site, int index)
+{
+    const std::vector<std::string>* names =
+        site == Site::coupling ? &R.coupling_names : site == Site::mode ? &R.mode_names : nullptr;
+    return names && index >= 0 && size_t(index) < names->size() ? (*names)[size_t(index)] : "";
+}
 
 nlohmann::json result_json(const GapResult& R)
 {

@@ -188,5 +188,12 @@ void how_far(const std::vector<std::pair<FitReport, EffectSetup>>& singles, cons
 // Traces for the report: R.t, measured, nominal, augmented, where_t, where_residual.
 void report_traces(const Baseline& B, const Signals& data, GapResult& R);
 
+// ---- result_json.cpp ----------------------------------------------------------
+
+// What an effect at `site` acts on: the coupling's name (R.coupling_names)
+// in a coupling, the nominal mode's (R.mode_names) for a mode, else "";
+// result.json's `couplings` entry and site_phrase's subject.
+std::string site_subject(const GapResult& R, Site site, int index);
+
 }  // namespace gap
 }  // namespace fracdesign

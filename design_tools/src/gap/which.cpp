@@ -104,15 +104,12 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
                 }
                 std::lock_guard<std::mutex> lk(mu);
                 ++done;
-                if (opt.progress)
-                    opt.progress("gap: fitted " + std::to_string(done) + "/" + std::to_string(jobs.size()) + " candidates (" +
-                                 effect_name(jobs[i].setup.kind) +
-                                 (jobs[i].setup.site == Site::coupling
-                                      ? " in the coupling '" + model.couplings[size_t(jobs[i].setup.coupling)].name + "'"
-                                      : jobs[i].setup.site == Site::output ? " at the outputs"
-                                      : jobs[i].setup.site == Site::mode && size_t(jobs[i].setup.coupling) < R.mode_names.size()
-                                          ? " at the " + R.mode_names[size_t(jobs[i].setup.coupling)]
-                                          : "") + ")");
+                if (opt.progress) {
+                    const EffectSetup& js = jobs[i].setup;
+                    const std::string name = effect_name(js.kind);
+                    opt.progress("gap: fitted " + std::to_string(done) + "/" + std::to_string(jobs.size()) + " candidates: " +
+                                 name + site_phrase(name, site_name(js.site), site_subject(R, js.site, js.coupling)));
+                }
             }
         };
         const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
