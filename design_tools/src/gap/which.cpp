@@ -144,7 +144,14 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
     // Likewise mode_shift (any change seen at one mode: near a mode, Kelvin-
     // Voigt damping in a spring or an added mode coupled to it moves that
     // mode's frequency and damping) ranks above fractional_damping and
-    // unmodelled_mode, the mechanisms, only by the margin.
+    // unmodelled_mode, the mechanisms, only by the margin. And output_delay
+    // ranks above input_delay only by the margin: with every output delayed
+    // alike it is the input delay wherever the delay commutes with the plant
+    // (an open loop, a linear SISO loop whose measured output is the one
+    // compared: y_m = C G e^{-ds} / (1 + C G e^{-ds}) r either way), and
+    // one delay of the plant's input is the smaller model than one per
+    // sensor; the confidence lists the other as a look-alike with the
+    // experiment that separates them.
     auto nested_rule = [&](auto& list, auto report_of, Effect contained, Effect container) {
         int ic = -1, is = -1;
         for (size_t i = 0; i < list.size(); ++i) {
@@ -161,7 +168,8 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
     };
     for (const std::pair<Effect, Effect>& n : {std::pair<Effect, Effect>{Effect::coulomb_friction, Effect::stribeck_friction},
                                                {Effect::fractional_damping, Effect::mode_shift},
-                                               {Effect::unmodelled_mode, Effect::mode_shift}}) {
+                                               {Effect::unmodelled_mode, Effect::mode_shift},
+                                               {Effect::input_delay, Effect::output_delay}}) {
         nested_rule(R.candidates, [](const FitReport& f) -> const FitReport& { return f; }, n.first, n.second);
         nested_rule(singles, [](const std::pair<FitReport, EffectSetup>& p) -> const FitReport& { return p.first; }, n.first,
                     n.second);
