@@ -139,3 +139,17 @@ TEST(GapSitesOffset, the_encoder_alone_with_a_fitted_start_is_explained_without_
     // and the replay is at the noise: the gap before is the 0.5 % noise over the output's std, not the offset
     EXPECT_LT(r.gap_before_total, 0.05);
 }
+
+// The encoder alone, stated at rest, and a second record from rest as the
+// held-out data (`--validate`, scored from its first sample): the start
+// transient is then held-out evidence and the offset is named.
+TEST(GapSitesOffset, the_encoder_alone_at_rest_is_named_on_a_validation_record_from_rest)
+{
+    std::mt19937 rng(2411);
+    const Axis a = draw(rng);
+    const Signals fit = record(a, 31), check = record(a, 57);
+    GapOptions o;
+    o.threads = 2;
+    const GapResult r = diagnose(nominal_from_json(doc(a, "at_rest", false), kTs), fit, &check, o);
+    gap_sites::expect_verdict(r, "sensor_offset", "force_input", "", {{"offset_x", a.offset}}, 0.05);
+}
