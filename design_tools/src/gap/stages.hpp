@@ -122,8 +122,31 @@ struct Evaluator {
 
 // Least squares on the free parameters from theta0.
 FitOutcome refine(FitProblem& P, const std::vector<double>& theta0, int max_iter);
+// Continuation in record length (fit_continued): a fit whose best start
+// lowers the cost of the set without its last effect by less than this share
+// (a held-out gap shrink of about 5 %, the selection's default margin:
+// 1 - 0.95^2) is continued; the first window ends where the cumulated
+// residual energy of the nominal on the fit rows reaches 1/kFirstWindowShare
+// of its total (at least 1/kMinWindowDiv of the rows), each next window is
+// kWindowGrowth times as long.
+inline constexpr double kContinuationGain = 0.1;
+inline constexpr double kFirstWindowShare = 1024.0;
+inline constexpr double kWindowGrowth = 1.5;
+inline constexpr Eigen::Index kMinWindowDiv = 32;
+// The windows of a continuation in record length over rows 0..N-1
+// (N = energy.size()): the first ends where the cumulated `energy` (the
+// nominal's squared residual per row) reaches 1/kFirstWindowShare of its
+// total, at least min_rows; each next one kWindowGrowth times as long,
+// while shorter than N. Empty when the energy is zero or N < 2 min_rows.
+std::vector<Eigen::Index> growing_windows(const std::vector<double>& energy, Eigen::Index min_rows);
+// The effect set fitted by continuation in record length: the last effect's
+// starts screened and refined on the first window of growing_windows, the
+// best refined on each longer window and on all fit rows in turn (see
+// fit.cpp). Infinite cost when there are no windows.
+FitOutcome fit_continued(FitProblem& P, const std::vector<double>& init, int max_iter);
 // Fits the effect set: earlier effects start at `init`, the last one from
-// each of its starts; returns the best.
+// each of its starts; returns the best (continued in record length when it
+// does not beat the set without the last effect, kContinuationGain).
 FitOutcome fit_set(FitProblem& P, const std::vector<double>& init, int max_iter);
 // Why the data do not identify a fitted parameter, or "" when they do.
 std::string unidentified_reason(double x, double sd, const ParamSpec& p);
