@@ -16,16 +16,24 @@ static unsigned long rd_u32(const unsigned char *p)
             ((unsigned long)p[3] << 24)) & PT_MASK32;
 }
 
+/* CRC-32 of the low and the high half of a byte (reflected polynomial
+ * 0xEDB88320): crc_nibble[i] is the CRC register after shifting the 4 bits
+ * of i out of it, i.e. four steps of the bitwise algorithm at once. */
+static const unsigned long crc_nibble[16] = {
+    0x00000000UL, 0x1DB71064UL, 0x3B6E20C8UL, 0x26D930ACUL, 0x76DC4190UL, 0x6B6B51F4UL, 0x4DB26158UL, 0x5005713CUL,
+    0xEDB88320UL, 0xF00F9344UL, 0xD6D6A3E8UL, 0xCB61B38CUL, 0x9B64C2B0UL, 0x86D3D2D4UL, 0xA00AE278UL, 0xBDBDF21CUL};
+
 unsigned long frac_crc32(const unsigned char *bytes, unsigned long n)
 {
-    /* Bitwise CRC-32, reflected polynomial 0xEDB88320: 8 shifts per byte, no
-     * table, so it costs no memory on the target; bounded time O(n). */
+    /* CRC-32 (ISO-HDLC, as zlib), reflected, two nibble-table steps per byte:
+     * a 64-byte constant table instead of the 1 KiB byte table, 4 x fewer
+     * steps than the bitwise form; bounded time O(n). */
     unsigned long crc = PT_MASK32, i;
-    int k;
     if (bytes == NULL) return 0UL;
     for (i = 0; i < n; i++) {
         crc ^= (unsigned long)bytes[i];
-        for (k = 0; k < 8; k++) crc = (crc & 1UL) ? ((crc >> 1) ^ 0xEDB88320UL) : (crc >> 1);
+        crc = (crc >> 4) ^ crc_nibble[crc & 0x0FUL];
+        crc = (crc >> 4) ^ crc_nibble[crc & 0x0FUL];
     }
     return (crc ^ PT_MASK32) & PT_MASK32;
 }
