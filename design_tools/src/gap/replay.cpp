@@ -375,13 +375,11 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     // channel's own effects); between readings it repeats its last reading.
     std::vector<double> held_sens(m.holds.size(), 0.0), held_raw(m.holds.size(), 0.0);
     auto plant_outputs = [&](bool with_d, Eigen::Index k) {
-        for (int i = 0; i < ny; ++i) {
-            double acc = 0;
-            for (int j = 0; j < nx; ++j) acc += m.C(i, j) * x[size_t(j)];
-            if (with_d)
-                for (int j = 0; j < nu; ++j) acc += m.D(i, j) * up[size_t(j)];
-            ytrue[size_t(i)] = acc + mode_gain[size_t(i)] * eta[1] / mode_w;
-        }
+        // y = C x (+ D u), Eigen's vectorised products (column-major).
+        Eigen::Map<Eigen::VectorXd> ym_true(ytrue.data(), ny);
+        ym_true.noalias() = m.C * Eigen::Map<const Eigen::VectorXd>(x.data(), nx);
+        if (with_d) ym_true.noalias() += m.D * Eigen::Map<const Eigen::VectorXd>(up.data(), nu);
+        for (int i = 0; i < ny; ++i) ytrue[size_t(i)] += mode_gain[size_t(i)] * eta[1] / mode_w;
         for (const NominalModel::OutputHold& h : m.holds) ytrue[size_t(h.output)] = ytrue[size_t(h.sample)];
         if (h_out.len == 0) h_out.init(ny, dout_max + 2, ytrue.data());
         h_out.push(ytrue.data());
@@ -499,11 +497,14 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
         }
         tr.u(k) = up[size_t(fi)] + (ffi != fi ? up[size_t(ffi)] : 0.0);  // the net force: the actuator's less the friction
         tr.v(k) = v;
-        for (int i = 0; i < nx; ++i) {
-            double acc = 0;
-            for (int j = 0; j < nx; ++j) acc += A(i, j) * x[size_t(j)];
-            for (int j = 0; j < nu; ++j) acc += B(i, j) * up[size_t(j)];
-            xn[size_t(i)] = acc + series_corr[size_t(i)];
+        {
+            // x(k+1) = A x + B u (+ the series mode's correction): Eigen's
+            // vectorised matrix-vector products, column by column (A is
+            // column-major; a row-wise loop strides through it).
+            Eigen::Map<Eigen::VectorXd> xnm(xn.data(), nx);
+            xnm.noalias() = A * Eigen::Map<const Eigen::VectorXd>(x.data(), nx);
+            xnm.noalias() += B * Eigen::Map<const Eigen::VectorXd>(up.data(), nu);
+            if (series) xnm += Eigen::Map<const Eigen::VectorXd>(series_corr.data(), nx);
         }
         for (int c = 0; c < ncp; ++c) {
             tr.twists(k, c) = twist_of(m.couplings[size_t(c)], x);
