@@ -232,22 +232,19 @@ FitOutcome fit_continued(FitProblem& P, const std::vector<double>& init, int max
     return best;
 }
 
+double white_cost(const FitProblem& P, const std::vector<double>& white_sd)
+{
+    double white = 0;
+    for (size_t c = 0; c < white_sd.size() && c < P.sigma.size(); ++c)
+        white += 0.5 * double(P.y.rows()) * std::pow(white_sd[c] / P.sigma[c], 2);
+    return white;
+}
+
 // Fits the effect set: earlier effects start at `init`, the last one from each
 // of its starts (screened by cost first when it is a grid); returns the best.
-// When that best does not beat the set without its last effect by the cost
-// share kContinuationGain, the fit is continued in record length
-// (fit_continued) and the better of the two is kept.
 FitOutcome fit_set(FitProblem& P, const std::vector<double>& init, int max_iter)
 {
-    FitOutcome best = refine_best(P, screened_starts(P, init), max_iter);
-    FitProblem before = P;
-    before.effects.pop_back();
-    const double base = before.cost(init);
-    if (!(best.cost < (1.0 - kContinuationGain) * base)) {
-        FitOutcome c = fit_continued(P, init, max_iter);
-        if (c.cost < best.cost) best = c;
-    }
-    return best;
+    return refine_best(P, screened_starts(P, init), max_iter);
 }
 
 // Why the data do not identify a fitted parameter (normalized value x, std

@@ -122,6 +122,7 @@ FitContext fit_context(const Baseline& B, const Signals& data, const GapResult& 
             hf += d * d;
         }
         const double sigma_w = sigma[c] * std::sqrt(hf / double(std::max<Eigen::Index>(1, nhf)) / 1.5);
+        ctx.white_sd.push_back(sigma_w);
         // And the data must lie on the lattice: rms distance to it below
         // q/10 (values off any lattice give q/sqrt(12) = 0.29 q).
         double off = 0;

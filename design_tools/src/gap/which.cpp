@@ -4,6 +4,7 @@
 // Coulomb / Stribeck rule (see stages.hpp, docs/gap.md).
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <exception>
 #include <mutex>
 #include <string>
@@ -85,19 +86,17 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
             jobs.push_back({ie, es});
         }
     }
-    std::vector<FitReport> job_report(jobs.size());
-    {
+    // Runs fit(i) for each listed job on the workers; progress per job.
+    const auto run_pool = [&](const std::vector<size_t>& todo, const char* what, auto fit) {
         std::atomic<size_t> next{0};
         size_t done = 0;
         std::mutex mu;
         std::exception_ptr failure;
         auto work = [&]() {
-            for (size_t i = next++; i < jobs.size(); i = next++) {
+            for (size_t n = next++; n < todo.size(); n = next++) {
+                const size_t i = todo[n];
                 try {
-                    FitProblem P = base_problem;
-                    P.effects = {jobs[i].setup};
-                    const FitOutcome o = fit_set(P, {}, opt.max_iterations);
-                    job_report[i] = make_report(P, o, E, opt.param_penalty);
+                    fit(i);
                 } catch (...) {
                     std::lock_guard<std::mutex> lk(mu);
                     if (!failure) failure = std::current_exception();
@@ -107,19 +106,56 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
                 if (opt.progress) {
                     const EffectSetup& js = jobs[i].setup;
                     const std::string name = effect_name(js.kind);
-                    opt.progress("gap: fitted " + std::to_string(done) + "/" + std::to_string(jobs.size()) + " candidates: " +
-                                 name + site_phrase(name, site_name(js.site), site_subject(R, js.site, js.coupling)));
+                    opt.progress("gap: " + std::string(what) + " " + std::to_string(done) + "/" + std::to_string(todo.size()) +
+                                 " candidates: " + name + site_phrase(name, site_name(js.site), site_subject(R, js.site, js.coupling)));
                 }
             }
         };
         const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
-        const size_t nthreads = std::min<size_t>(jobs.size(), opt.threads > 0 ? size_t(opt.threads) : size_t(hw));
+        const size_t nthreads = std::min<size_t>(todo.size(), opt.threads > 0 ? size_t(opt.threads) : size_t(hw));
         std::vector<std::thread> pool;
         for (size_t t = 1; t < nthreads; ++t) pool.emplace_back(work);
         work();
         for (std::thread& t : pool) t.join();
         if (failure) std::rethrow_exception(failure);
-    }
+    };
+    // First pass: every candidate from its starts.
+    std::vector<FitOutcome> outcome(jobs.size());
+    std::vector<FitReport> job_report(jobs.size());
+    std::vector<size_t> all(jobs.size());
+    for (size_t i = 0; i < jobs.size(); ++i) all[i] = i;
+    run_pool(all, "fitted", [&](size_t i) {
+        FitProblem P = base_problem;
+        P.effects = {jobs[i].setup};
+        outcome[i] = fit_set(P, {}, opt.max_iterations);
+        job_report[i] = make_report(P, outcome[i], E, opt.param_penalty);
+    });
+    // Second pass (stages.hpp kStructuredMisfit, kExplainedShare):
+    // continuation in record length for the candidates that explained
+    // little, when the nominal's misfit is structured and no first-pass fit
+    // explained the larger part of it.
+    FitProblem nominal = base_problem;
+    nominal.effects.clear();
+    const double base_cost = nominal.cost({});
+    const double white = white_cost(base_problem, B.noise_sd.empty() ? ctx.white_sd : B.noise_sd);
+    double best_cost = base_cost;
+    for (const FitOutcome& o : outcome) best_cost = std::min(best_cost, o.cost);
+    std::vector<size_t> weak;
+    if (std::isfinite(base_cost) && base_cost > kStructuredMisfit * white &&
+        best_cost - white > (1.0 - kExplainedShare) * (base_cost - white))
+        for (size_t i = 0; i < jobs.size(); ++i)
+            if (!(outcome[i].cost < (1.0 - kContinuationGain) * base_cost)) weak.push_back(i);
+    R.continued = weak.size();
+    if (!weak.empty())
+        run_pool(weak, "continued", [&](size_t i) {
+            FitProblem P = base_problem;
+            P.effects = {jobs[i].setup};
+            const FitOutcome c = fit_continued(P, {}, opt.max_iterations);
+            if (c.cost < outcome[i].cost) {
+                outcome[i] = c;
+                job_report[i] = make_report(P, c, E, opt.param_penalty);
+            }
+        });
     std::vector<std::pair<FitReport, EffectSetup>> singles;
     for (size_t ie = 0; ie < opt.effects.size(); ++ie) {
         bool have = false;

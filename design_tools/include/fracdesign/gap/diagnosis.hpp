@@ -96,6 +96,9 @@ struct GapResult {
     // held-out nrmse of a perfect model), 0 when the document states no
     // noise; a gap_before_total within kNoiseFloorFactor of it is `none`.
     double noise_floor = 0.0;
+    // Single candidates fitted a second time by continuation in record
+    // length (docs/gap.md "Continuation in record length").
+    size_t continued = 0;
     std::vector<std::string> skipped;               // effects not applicable, with the reason
     // Traces for the report (evaluation record): time, measured, nominal, augmented.
     Eigen::VectorXd t;

@@ -108,6 +108,10 @@ struct FitContext {
     int coupling = 0;
     std::vector<double> Sy;                 // std of each compared output
     std::vector<double> quant_step;         // lattice step of each compared output (0: not quantized)
+    // White level of each compared output's nominal residual [its unit]:
+    // rms(r(k) - (r(k-1) + r(k+1))/2)/sqrt(1.5) over the fit rows (at the
+    // readings of a held output), the noise std when the residual is white.
+    std::vector<double> white_sd;
     std::vector<double> residual_peaks_hz;  // largest peaks of the nominal residual spectrum
     long fit_samples = 0;
     // The nominal plant mode a set-up is for (Site::mode, index in
