@@ -454,7 +454,12 @@ def sim_fop(p, eff):
         h = Ts / sub
         M = N * sub
         w = gl_weights(p["lam"], M + 1)
-        ts = np.arange(1, M + 1) * h
+        # Sub-step j spans ((j-1) h, j h]; the held input over it is the
+        # delayed input at its start (a sample's reading at k Ts holds no
+        # response to the command applied at k Ts; evaluated at the sub-step's
+        # end, the step leaked one sub-step early, an O(h^lambda) error at
+        # every step that Richardson's extrapolation does not remove).
+        ts = np.arange(0, M) * h
         idx = np.floor((ts - delay) / Ts + 1e-9).astype(int)
         ud = np.where(idx >= 0, ue[np.clip(idx, 0, N - 1)], 0.0)
         yh = np.zeros(M + 1)

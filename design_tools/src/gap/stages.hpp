@@ -128,11 +128,11 @@ FitOutcome refine(FitProblem& P, const std::vector<double>& theta0, int max_iter
 // margin: 1 - 0.95^2) is fitted again by continuation, when there is a
 // structured misfit left that no candidate explained (kStructuredMisfit);
 // the first window ends where the cumulated residual energy of the nominal
-// on the fit rows reaches 1/kFirstWindowShare of its total (at least
-// 1/kMinWindowDiv of the rows), each next window is kWindowGrowth times as
-// long.
+// on the fit rows reaches a share kFirstWindowShares of its total (at least
+// 1/kMinWindowDiv of the rows; one path from each share), each next window
+// is kWindowGrowth times as long.
 inline constexpr double kContinuationGain = 0.1;
-inline constexpr double kFirstWindowShare = 1024.0;
+inline constexpr double kFirstWindowShares[] = {1.0 / 1024.0, 1.0 / 16.0};
 inline constexpr double kWindowGrowth = 1.5;
 inline constexpr Eigen::Index kMinWindowDiv = 32;
 // A misfit is structured when its cost on the fit rows is above
@@ -155,13 +155,14 @@ inline constexpr double kExplainedShare = 0.5;
 double white_cost(const FitProblem& P, const std::vector<double>& white_sd);
 // The windows of a continuation in record length over rows 0..N-1
 // (N = energy.size()): the first ends where the cumulated `energy` (the
-// nominal's squared residual per row) reaches 1/kFirstWindowShare of its
-// total, at least min_rows; each next one kWindowGrowth times as long,
-// while shorter than N. Empty when the energy is zero or N < 2 min_rows.
-std::vector<Eigen::Index> growing_windows(const std::vector<double>& energy, Eigen::Index min_rows);
-// The effect set fitted by continuation in record length: the last effect's
-// starts screened and refined on the first window of growing_windows, the
-// best refined on each longer window and on all fit rows in turn (see
+// nominal's squared residual per row) reaches `share` of its total, at
+// least min_rows; each next one kWindowGrowth times as long, while shorter
+// than N. Empty when the energy is zero or N < 2 min_rows.
+std::vector<Eigen::Index> growing_windows(const std::vector<double>& energy, Eigen::Index min_rows, double share);
+// The effect set fitted by continuation in record length: for each first
+// window (kFirstWindowShares), the last effect's starts screened and the
+// best three refined on it, each refined on every longer window of
+// growing_windows and on all fit rows in turn; the lowest cost (see
 // fit.cpp). Infinite cost when there are no windows.
 FitOutcome fit_continued(FitProblem& P, const std::vector<double>& init, int max_iter);
 // Fits the effect set: earlier effects start at `init`, the last one from

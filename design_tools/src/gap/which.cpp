@@ -133,19 +133,28 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
     // Second pass (stages.hpp kStructuredMisfit, kExplainedShare):
     // continuation in record length for the candidates that explained
     // little, when the nominal's misfit is structured and no first-pass fit
-    // explained the larger part of it.
+    // explained the larger part of it on the held-out rows. Held out, not
+    // on the fit rows: a fit caught in a wrong basin of a rough cost (a
+    // lightly damped loop's mode 1 % off) may lower the fit cost and still
+    // replay the held-out rows worse than the nominal.
     FitProblem nominal = base_problem;
     nominal.effects.clear();
     const double base_cost = nominal.cost({});
     const double white = white_cost(base_problem, B.noise_sd.empty() ? ctx.white_sd : B.noise_sd);
-    double best_cost = base_cost;
-    for (const FitOutcome& o : outcome) best_cost = std::min(best_cost, o.cost);
+    // The held-out gap's white part, in the fit rows' proportion.
+    const double g2 = R.gap_before_total * R.gap_before_total;
+    const double w2 = base_cost > 0 ? g2 * std::min(1.0, white / base_cost) : 0.0;
+    double best2 = g2;
+    for (const FitReport& r : job_report)
+        if (std::isfinite(r.gap)) best2 = std::min(best2, r.gap * r.gap);
     std::vector<size_t> weak;
     if (std::isfinite(base_cost) && base_cost > kStructuredMisfit * white &&
-        best_cost - white > (1.0 - kExplainedShare) * (base_cost - white))
+        best2 - w2 > (1.0 - kExplainedShare) * (g2 - w2))
         for (size_t i = 0; i < jobs.size(); ++i)
-            if (!(outcome[i].cost < (1.0 - kContinuationGain) * base_cost)) weak.push_back(i);
+            if (!(outcome[i].cost < (1.0 - kContinuationGain) * base_cost) || !(job_report[i].shrink >= opt.margin))
+                weak.push_back(i);
     R.continued = weak.size();
+
     if (!weak.empty())
         run_pool(weak, "continued", [&](size_t i) {
             FitProblem P = base_problem;
@@ -156,6 +165,31 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
                 job_report[i] = make_report(P, c, E, opt.param_penalty);
             }
         });
+    // A Stribeck fit whose curve does not fall (Fs <= Fc: the replay reads
+    // it as Fs = Fc, effects.cpp) is a Coulomb friction without offset. When
+    // it fits better than the Coulomb candidate at the same site, that fit
+    // found a basin the Coulomb starts missed: Coulomb is refined from
+    // (Fc, offset 0) there, so the contained model is never scored worse
+    // than its own restriction of the container and the nested rule below
+    // compares like with like.
+    for (size_t is = 0; is < jobs.size(); ++is) {
+        const EffectSetup& ss = jobs[is].setup;
+        const std::vector<double>& ts = outcome[is].theta;
+        if (ss.kind != Effect::stribeck_friction || ts.size() < 2 || !(ts[1] <= ts[0])) continue;
+        for (size_t ic = 0; ic < jobs.size(); ++ic) {
+            const EffectSetup& cs = jobs[ic].setup;
+            if (cs.kind != Effect::coulomb_friction || cs.site != ss.site || cs.spec.size() != 2 ||
+                !(outcome[is].cost < outcome[ic].cost) || cs.spec[0].scale != ss.spec[0].scale)
+                continue;
+            FitProblem P = base_problem;
+            P.effects = {cs};
+            const FitOutcome c = refine(P, {ts[0], 0.0}, opt.max_iterations);
+            if (c.cost < outcome[ic].cost) {
+                outcome[ic] = c;
+                job_report[ic] = make_report(P, c, E, opt.param_penalty);
+            }
+        }
+    }
     std::vector<std::pair<FitReport, EffectSetup>> singles;
     for (size_t ie = 0; ie < opt.effects.size(); ++ie) {
         bool have = false;
