@@ -213,9 +213,10 @@ TEST(GapVerdict, candidate_fits_give_the_same_result_on_one_and_on_two_threads)
     int lines = 0;
     o.progress = [&](const std::string&) { ++lines; };
     nlohmann::json two = result_json(diagnose(m, s, nullptr, o));
-    // One per fit: the six effects and the dead zone's symmetric restriction
-    // (EffectDescriptor::nested), and one per continued fit (which.cpp).
-    EXPECT_EQ(lines, 7 + two["data"]["continued_candidates"].get<int>());
+    // One per fit: the six effects, the dead zone's symmetric restriction and
+    // Coulomb's without offset (EffectDescriptor::nested), and one per
+    // continued fit (which.cpp).
+    EXPECT_EQ(lines, 8 + two["data"]["continued_candidates"].get<int>());
     one.erase("seconds");
     two.erase("seconds");
     EXPECT_EQ(one.dump(), two.dump());

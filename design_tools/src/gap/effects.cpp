@@ -141,6 +141,16 @@ const std::vector<EffectDescriptor>& catalog()
          [](const std::vector<double>& p, Site, const ReplaySetup&, ReplayTerms& t) {
              t.Fc = p[0];
              t.Foff = p[1];
+         },
+         // Nested restriction: no offset (Fc alone). Without it a Coulomb
+         // machine could be named stribeck_friction with Fs <= Fc (the same
+         // replay as Coulomb without offset, effects below) whenever the
+         // offset, fitted to the fit rows, replayed the held-out rows worse.
+         [](const FitContext& c, Site) {
+             EffectSetup s{Effect::coulomb_friction, Site::force_input, 0,
+                           {{c.Su, 0, kBig, false}, {c.Su, 0, 0, true}}, {{0.05, 0.0}, {0.3, 0.0}}, false};
+             s.spec[1].held = true;
+             return std::vector<EffectSetup>{s};
          }},
         {Effect::viscous_friction, "viscous_friction", "F = Fv v", true, {Site::force_input},
          "moves at several constant speeds",

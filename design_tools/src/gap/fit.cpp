@@ -302,7 +302,7 @@ FitReport make_report(const FitProblem& P, const FitOutcome& o, const Evaluator&
             const ParamSpec& ps = e.spec[src - first];
             sd.push_back(ps.fixed ? kNaN : ps.scale * o.stddev[src]);
             why.push_back(ps.fixed ? "" : unidentified_reason(o.theta[src], o.stddev[src], ps));
-            if (p.mirror < 0) r.fitted_params += 1;
+            if (p.mirror < 0 && !p.held) r.fitted_params += 1;
             ++k;
         }
         r.stddev.push_back(sd);

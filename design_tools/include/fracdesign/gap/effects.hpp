@@ -89,6 +89,9 @@ struct ParamSpec {
     // counted as a fitted parameter; its std and identification are the
     // mirrored one's.
     int mirror = -1;
+    // A nested restriction's parameter held at its start value (Coulomb
+    // friction without offset): fixed, and not counted as fitted.
+    bool held = false;
 };
 // The fit set-up of one effect at one site: parameter scales and bounds, start values.
 struct EffectSetup {
