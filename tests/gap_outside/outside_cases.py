@@ -10,7 +10,9 @@ sub-steps, the nonlinear torques held over each sub-step, dry friction by
 operator splitting (the friction impulse that stops the body within the
 sub-step, limited to the friction level), Grunwald-Letnikov fractional
 derivatives (Podlubny 1999, eq. 2.54; weights by the recursion
-w_j = w_{j-1} (1 - (alpha + 1)/j)) on the sub-step grid with full memory.
+w_j = w_{j-1} (1 - (alpha + 1)/j)) on the sub-step grid with full memory;
+the fractional process by its exact step response (numerical Laplace
+inversion on Talbot's contour) summed over the held input's steps.
 
 Plants (parameters drawn per case):
   arm      motor - gear spring - hub - link spring - tip (three inertias), PD
@@ -430,11 +432,48 @@ def fop_input(p, t):
     return u
 
 
+def fop_step(p, tt):
+    """Step response K (1 - E_lambda(-t^lambda / T)) of K/(1 + T s^lambda) at
+    the times tt > 0, by numerical inversion of its Laplace transform
+    K/(s (1 + T s^lambda)) on Talbot's contour (the fixed Talbot method:
+    Abate & Valko, Int. J. Numer. Meth. Eng. 60, 2004, eq. (27)); M = 24
+    nodes give about 1e-10 relative in double precision. Exact in the input's
+    steps, unlike a Grunwald-Letnikov scheme, whose error at each step is of
+    order h^lambda (Richardson's extrapolation, which assumes an expansion
+    in h, does not remove it: at lambda = 0.44 it left a 50 Hz residual that
+    a correct tool names an unmodelled mode)."""
+    M = 24
+    tt = np.asarray(tt, dtype=float).reshape(-1, 1)
+    r = 2.0 * M / (5.0 * tt)
+    th = (np.arange(1, M) * np.pi / M).reshape(1, -1)
+    cot = 1.0 / np.tan(th)
+    sk = r * th * (cot + 1j)
+    sig = th + (th * cot - 1.0) * cot
+    K, T, lam = p["K"], p["T"], p["lam"]
+    # For 1 < lambda <= 2 the principal sheet holds the pole pair
+    # s_p = T^(-1/lambda) e^(+-i pi/lambda) (residue of F: -K/lambda each),
+    # which the contour need not enclose at large t: it is subtracted from F
+    # and its response -(2K/lambda) e^(Re s_p t) cos(Im s_p t) added back.
+    sp = T ** (-1.0 / lam) * np.exp(1j * np.pi / lam) if lam > 1 else None
+
+    def F(z):
+        f = K / (z * (1.0 + T * z ** lam))
+        if sp is not None:
+            f = f + (K / lam) * (1.0 / (z - sp) + 1.0 / (z - np.conj(sp)))
+        return f
+    acc = 0.5 * np.real(F(r) * np.exp(r * tt)) + np.sum(np.real(np.exp(tt * sk) * F(sk) * (1.0 + 1j * sig)), axis=1,
+                                                         keepdims=True)
+    y = (r / M * acc).ravel()
+    if sp is not None:
+        y -= (2.0 * K / lam) * np.exp(sp.real * tt.ravel()) * np.cos(sp.imag * tt.ravel())
+    return y
+
+
 def sim_fop(p, eff):
-    """T D^lambda y + y = K u(t - tau - extra): implicit Grunwald-Letnikov on
-    sub-steps h = Ts/SUB, full memory; u held (zero order) between samples."""
+    """y = K e^{-(tau + extra) s}/(1 + T s^lambda) u for u held (zero order)
+    between samples: the sum of the held input's steps times the step
+    response (fop_step), each delayed."""
     Ts, N = p["Ts"], p["N"]
-    h = Ts / SUB
     t = np.arange(N) * Ts
     u = fop_input(p, t)
     name = eff["name"] if eff else "none"
@@ -449,28 +488,15 @@ def sim_fop(p, eff):
         pl = Play(eff["width"])
         ue = np.array([pl(v) for v in ue])
     delay = p["tau"] + (eff["delay_s"] if name == "input_delay" else 0.0)
-
-    def gl_solve(sub):
-        h = Ts / sub
-        M = N * sub
-        w = gl_weights(p["lam"], M + 1)
-        # Sub-step j spans ((j-1) h, j h]; the held input over it is the
-        # delayed input at its start (a sample's reading at k Ts holds no
-        # response to the command applied at k Ts; evaluated at the sub-step's
-        # end, the step leaked one sub-step early, an O(h^lambda) error at
-        # every step that Richardson's extrapolation does not remove).
-        ts = np.arange(0, M) * h
-        idx = np.floor((ts - delay) / Ts + 1e-9).astype(int)
-        ud = np.where(idx >= 0, ue[np.clip(idx, 0, N - 1)], 0.0)
-        yh = np.zeros(M + 1)
-        c = p["T"] / h ** p["lam"]
-        wr = w[1:][::-1].copy()
-        for j in range(1, M + 1):
-            hist = wr[M - j:] @ yh[:j]
-            yh[j] = (p["K"] * ud[j - 1] - c * hist) / (c * w[0] + 1)
-        return yh[::sub][:N]
-    # Richardson extrapolation of the first-order Grunwald-Letnikov scheme
-    y = 2 * gl_solve(2 * SUB) - gl_solve(SUB)
+    du = np.diff(np.concatenate([[0.0], ue]))
+    y = np.zeros(N)
+    for j in np.nonzero(du)[0]:
+        # the input's step at sample j acts from j Ts + delay; the reading at
+        # k Ts holds its response only for k Ts > j Ts + delay
+        age = t - j * Ts - delay
+        on = age > 1e-12
+        if np.any(on):
+            y[on] += du[j] * fop_step(p, age[on])
     if name == "sensor_offset":
         y = y + eff["offset"]
     return t, u, y.reshape(-1, 1)
