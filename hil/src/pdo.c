@@ -9,6 +9,15 @@ static int is_comm(uint16_t ix) { return (ix >= 0x1400u && ix < 0x1400u + HIL_PD
 static int is_map(uint16_t ix) { return (ix >= 0x1600u && ix < 0x1600u + HIL_PDO_MAX) || (ix >= 0x1A00u && ix < 0x1A00u + HIL_PDO_MAX); }
 static int is_rx(uint16_t ix) { return ix < 0x1800u; }
 
+/* CiA 301 table 3, restricted CAN-IDs: identifiers of NMT, SYNC-less
+ * reserved ranges, the default SDO channels and NMT error control, which no
+ * PDO may use (a TPDO on 0x580 + node would be taken for an SDO answer). */
+static int restricted_id(uint32_t id)
+{
+    return id <= 0x07Fu || (id >= 0x101u && id <= 0x180u) || (id >= 0x581u && id <= 0x5FFu) ||
+           (id >= 0x601u && id <= 0x67Fu) || (id >= 0x6E0u && id <= 0x6FFu) || id >= 0x701u;
+}
+
 static int slot(const struct hil_od_dev *d, uint16_t ix, uint8_t sub) { return hil_od_find(d->od, ix, sub, NULL); }
 
 /* Position of the object a mapping entry names when it may be mapped into
@@ -42,7 +51,7 @@ uint32_t hil_pdo_param_check(const struct hil_od_dev *d, int i, uint32_t v)
                 return HIL_SDO_ABORT_RANGE;
             if (!(cur & PDO_NOT_VALID) && !(v & PDO_NOT_VALID) && (cur & 0x7FFu) != (v & 0x7FFu))
                 return HIL_SDO_ABORT_RANGE;
-            if ((v & 0x7FFu) == 0)
+            if ((v & 0x7FFu) == 0 || (!(v & PDO_NOT_VALID) && restricted_id(v & 0x7FFu)))
                 return HIL_SDO_ABORT_RANGE;
         } else if (e->sub == 2 && v > 240u && v < 254u) {
             return HIL_SDO_ABORT_RANGE;

@@ -222,6 +222,9 @@ static void test_pdo_rules_and_remap_applied_at_nmt_start(void **state)
     assert_int_equal(down(&d, 0x1A02, 1, 0x60410010, 4), 0); /* sub 0 is 0: an entry may change */
     assert_int_equal(down(&d, 0x1800, 1, 0x40000191, 4), HIL_SDO_ABORT_RANGE); /* valid PDO, new id */
     assert_int_equal(down(&d, 0x1800, 1, 0x40000981, 4), HIL_SDO_ABORT_RANGE); /* bits 11-28 */
+    assert_int_equal(down(&d, 0x1802, 1, 0x40000581, 4), HIL_SDO_ABORT_RANGE); /* SDO answer's id */
+    assert_int_equal(down(&d, 0x1802, 1, 0x40000701, 4), HIL_SDO_ABORT_RANGE); /* heartbeat's id */
+    assert_int_equal(down(&d, 0x1802, 1, 0xC0000581, 4), 0); /* not valid: any id may be parked */
     assert_int_equal(down(&d, 0x1A00, 0, 0, 1), HIL_SDO_ABORT_STATE);          /* TPDO1 is valid */
     assert_int_equal(down(&d, 0x1A02, 2, 0x10000020, 4), HIL_SDO_ABORT_NOT_MAPPABLE); /* 0x1000 */
     assert_int_equal(down(&d, 0x1A02, 2, 0x60410020, 4), HIL_SDO_ABORT_NOT_MAPPABLE); /* wrong length */

@@ -9,7 +9,9 @@
  * Rules (hil_pdo_param_check, called by hil_od_write after the generic
  * checks): a COB-ID is an 11-bit identifier (bits 11-29 zero, bit 30 "no
  * RTR" free, bit 31 "not valid"), the identifier of a valid PDO cannot
- * change (set bit 31 first: 0x06090030); a transmission type 241..253 is
+ * change (set bit 31 first: 0x06090030), a valid PDO's identifier is not
+ * one of CiA 301's restricted CAN-IDs (0x000-0x07F, 0x101-0x180,
+ * 0x581-0x5FF, 0x601-0x67F, 0x6E0-0x6FF, 0x701-0x7FF: 0x06090030); a transmission type 241..253 is
  * reserved (0x06090030); a mapping changes only while its PDO is not valid
  * (0x08000022) and a mapping entry only while sub-index 0 is 0 (0x08000022);
  * an entry names an existing PDO-mappable object whose length is the bit
