@@ -47,10 +47,9 @@ EOF
 echo "frames: $(wc -l < hil/frames.log) CAN frames in $out/hil/frames.log (candump format)"
 
 stage "4/4 gap diagnosis of the recorded run, ArmCtrl in the replay (gap-plc)"
-# The rig's CSV does not log when the PLC's tasks start (the controller node starts them once the
-# drive is enabled and an IMU reading came): the record gets a column `run`, 1 from the first sample
-# whose command is nonzero, and the nominal maps it to ArmCtrl's Run.
-$py "$src/scripts/add_run_column.py" hil/signals.csv hil/record.csv
+# The rig's CSV logs when the PLC's tasks start (column `run`: the controller node starts them once
+# the drive is enabled and an IMU reading came); the nominal maps it to ArmCtrl's Run.
+cp hil/signals.csv hil/record.csv
 $py - nominal.json <<'EOF'
 import json, sys
 n = json.load(open(sys.argv[1]))

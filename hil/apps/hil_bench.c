@@ -170,7 +170,7 @@ static void report_json(FILE *meta, const char *dir, const char *name, int last)
 }
 
 /* signals.csv with the lockstep bench's columns: row k of controller.csv
- * (t, ref, torque_cmd, motor_angle, motor_velocity, imu_rate, fault) joined
+ * (t, ref, torque_cmd, motor_angle, motor_velocity, imu_rate, fault, run) joined
  * with row k of the plant's truth.csv (t, tip_angle, tip_velocity,
  * torque_actual): the plant steps once per SYNC, so row k of both is cycle k.
  * Returns 0, or -1 when the row counts or times differ. */
@@ -186,10 +186,17 @@ static int merge_signals(const char *dir)
         rc = -1;
     if (!rc)
         fprintf(o, "t,ref,torque_cmd,motor_angle,motor_velocity,imu_rate,tip_angle,tip_velocity,"
-                   "torque_actual,fault\n");
+                   "torque_actual,fault,run\n");
     while (!rc && fgets(lc, sizeof lc, c)) {
-        char *fault = strrchr(lc, ','), *tp;
+        char *fault = lc, *tp;
         double t;
+        int i;
+        /* the controller's columns after imu_rate (fault, run) go last: split at its 6th comma */
+        for (i = 0; i < 6 && fault; i++) {
+            fault = strchr(fault, ',');
+            if (fault && i < 5)
+                fault++;
+        }
         if (!fgets(lp, sizeof lp, p) || !fault) {
             rc = -1;
             break;

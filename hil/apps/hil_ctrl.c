@@ -134,7 +134,7 @@ int main(int argc, char **argv)
         return 1;
     }
     if (csv)
-        fprintf(csv, "t,ref,torque_cmd,motor_angle,motor_velocity,imu_rate,fault\n");
+        fprintf(csv, "t,ref,torque_cmd,motor_angle,motor_velocity,imu_rate,fault,run\n");
     app_open_bus(&t, o.bus);
     t0 = app_now();
     serve(&t, &c, t0 + 0.05, 0);
@@ -181,8 +181,8 @@ int main(int argc, char **argv)
         app_send_all(&t, &out);
         if (csv) {
             const struct hil_ctrl_signals *s = &c.sig;
-            fprintf(csv, "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%d\n", s->t, s->ref, s->torque_cmd, s->theta,
-                    s->omega, s->imu_rate, s->fault);
+            fprintf(csv, "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%d\n", s->t, s->ref, s->torque_cmd, s->theta,
+                    s->omega, s->imu_rate, s->fault, s->run);
         }
         if (lockstep) {
             if (!serve(&t, &c, app_now() + step_timeout, 2))

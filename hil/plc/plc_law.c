@@ -229,7 +229,7 @@ int hil_plc_law_step(void *ctx, const struct hil_ctrl_law_in *in, double *torque
     }
     if (L->ctrl_img.Error)
         return L->ctrl_img.StatusID ? -(int)L->ctrl_img.StatusID : -1;
-    return HIL_OK;
+    return 1; /* the tasks ran this cycle (hil_ctrl_law) */
 }
 
 void hil_plc_law_stop(struct hil_plc_law *L)

@@ -102,7 +102,9 @@ int hil_plc_law_init_table(struct hil_plc_law *L, double T, const void *table, u
 /* ArmCtrl's StatusID (0: no error). */
 unsigned hil_plc_law_status(const struct hil_plc_law *L);
 
-/* The hil_ctrl_law callback; ctx is the struct hil_plc_law. */
+/* The hil_ctrl_law callback; ctx is the struct hil_plc_law. 0 while the
+ * cyclic tasks wait for the I/O (drive enabled, an IMU reading), 1 once they
+ * ran this cycle, minus the StatusID in ArmCtrl's fault reaction. */
 int hil_plc_law_step(void *ctx, const struct hil_ctrl_law_in *in, double *torque, double *ref);
 
 /* Runs the _EXIT programs. */

@@ -245,6 +245,8 @@ static void run_law(struct hil_ctrl *c, struct hil_out *out)
         in.enabled = enabled;
         ref = 0.0;
         st = c->law(c->law_ctx, &in, &u, &ref);
+        if (st > 0)
+            c->law_running = 1;
         if (st < 0)
             c->law_status = st < -65535 ? 65535u : (unsigned)-st;
         if (st < 0 && !c->fault) {
@@ -275,6 +277,7 @@ static void run_law(struct hil_ctrl *c, struct hil_out *out)
     c->sig.imu_rate = c->imu_rate;
     c->sig.statusword = c->statusword;
     c->sig.fault = c->fault;
+    c->sig.run = c->law ? c->law_running : enabled;
 }
 
 int hil_ctrl_tick(struct hil_ctrl *c, struct hil_out *out)

@@ -356,7 +356,7 @@ int hil_rig_init(struct hil_rig *r, const struct hil_rig_config *c, FILE *log, F
     r->st.boot_frames = r->st.frames_delivered;
     if (csv)
         fprintf(csv, "t,ref,torque_cmd,motor_angle,motor_velocity,imu_rate,tip_angle,tip_velocity,"
-                     "torque_actual,fault\n");
+                     "torque_actual,fault,run\n");
     return HIL_OK;
 }
 
@@ -471,9 +471,9 @@ int hil_rig_cycle(struct hil_rig *r)
     r->st.cycles++;
     if (r->csv) {
         const struct hil_ctrl_signals *s = &r->ctrl.sig;
-        fprintf(r->csv, "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d\n", s->t, s->ref,
+        fprintf(r->csv, "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%d\n", s->t, s->ref,
                 s->torque_cmd, s->theta, s->omega, s->imu_rate, tip_angle, tip_rate,
-                r->drive.tau_act, s->fault);
+                r->drive.tau_act, s->fault, s->run);
     }
     return HIL_OK;
 }

@@ -37,7 +37,7 @@ bench=$(/usr/bin/python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))
 echo "frames: sent by the node processes $sent, logged $logged ($lines lines), in-process bench $bench"
 [ "$sent" = "$logged" ] && [ "$logged" = "$lines" ] || { echo "FAIL: log does not hold every frame sent"; status=1; }
 [ "$logged" = "$bench" ] || { echo "FAIL: frame count differs from the in-process bench"; status=1; }
-if ! diff <(cut -d, -f1-7 "$work/ctrl.csv") <(cut -d, -f1-6,10 "$work/bench/signals.csv" | sed '1s/.*/t,ref,torque_cmd,motor_angle,motor_velocity,imu_rate,fault/') > "$work/diff.txt"; then
+if ! diff <(cut -d, -f1-8 "$work/ctrl.csv") <(cut -d, -f1-6,10,11 "$work/bench/signals.csv" | sed '1s/.*/t,ref,torque_cmd,motor_angle,motor_velocity,imu_rate,fault,run/') > "$work/diff.txt"; then
   echo "FAIL: controller signals differ from the in-process bench:"; head -n 10 "$work/diff.txt"; status=1
 else
   echo "controller signals identical to the in-process bench ($(($(wc -l < "$work/ctrl.csv") - 1)) cycles)"
@@ -51,7 +51,7 @@ for extra in "$scen" "${@:4}"; do
   name=$(basename "$extra" .txt)
   "$bin/hil_bench" --processes --scenario "$extra" --out "$work/procs-$name" > /dev/null
   "$bin/hil_bench" --scenario "$extra" --out "$work/bench-$name" > /dev/null
-  if ! diff <(cut -d, -f1-8,10 "$work/procs-$name/signals.csv") <(cut -d, -f1-8,10 "$work/bench-$name/signals.csv") > "$work/diff-$name.txt"; then
+  if ! diff <(cut -d, -f1-8,10,11 "$work/procs-$name/signals.csv") <(cut -d, -f1-8,10,11 "$work/bench-$name/signals.csv") > "$work/diff-$name.txt"; then
     echo "FAIL: $name: hil_bench --processes signals differ from the in-process bench:"; head -n 10 "$work/diff-$name.txt"; status=1
   elif ! paste -d, <(cut -d, -f9 "$work/procs-$name/signals.csv") <(cut -d, -f9 "$work/bench-$name/signals.csv") |
        awk -F, 'NR > 1 && ($1 - $2 > 1e-4 || $2 - $1 > 1e-4) { bad = 1 } END { exit bad }'; then

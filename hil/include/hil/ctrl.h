@@ -55,7 +55,9 @@ struct hil_ctrl_params {
  * ArmCtrl program, hil/plc_law.h). Called once per cycle with what the node
  * decoded from the bus; returns the torque command in *torque and the
  * reference in *ref (for the logs), and a negative value when the law is in
- * its fault reaction: -st is the law's status code (ArmCtrl: its StatusID;
+ * its fault reaction, else 0 before the law's cyclic tasks run and 1 once
+ * they do (ArmCtrl: from the cycle the drive is enabled and an IMU reading
+ * came; logged as the records' column `run`): -st is the law's status code (ArmCtrl: its StatusID;
  * 1 when the law has none), kept in law_status; the node then sends EMCY
  * 0x7300 once per episode with the status code as u16 in bytes 3-4 (the
  * first two manufacturer-specific bytes).
@@ -75,6 +77,7 @@ struct hil_ctrl_signals {   /* what the controller saw and did in one cycle */
     double t, ref, torque_cmd, theta, omega, imu_rate;
     uint16_t statusword;
     int fault;
+    int run;                /* the law's cyclic tasks run (from their first cycle on; the PD test law: drive enabled) */
 };
 
 #define HIL_CTRL_BOOT_MAX 64 /* SDO steps per device */
@@ -116,6 +119,7 @@ struct hil_ctrl {
     unsigned law_status;      /* status code of the law's last fault (0: none yet) */
     hil_ctrl_law law;         /* NULL: the PD test law */
     void *law_ctx;
+    int law_running;          /* the law returned 1 once: its tasks run */
 };
 
 /* Test-law defaults for the rigid test plant: kp 400, kd 60, k_tip 0,
