@@ -137,6 +137,17 @@ TEST(GapDocumentCli, refuses_bad_input_limits)
     expect_refused(lag({{"input_limits", {{"u", 2.0}}}}), "lim_num", {"gap.input_limits.u", "2.0", "[lo, hi]"});
 }
 
+TEST(GapDocumentCli, refuses_bad_known_friction)
+{
+    const nlohmann::json v = {{"velocity", "y"}};
+    auto with = [&](const nlohmann::json& f) { nlohmann::json g = v; g["friction"] = f; return lag(g); };
+    expect_refused(lag({{"friction", {{"coulomb", 1.0}}}}), "fr_velocity", {"gap.friction", "gap.velocity"});
+    expect_refused(with({{"coulomb", -1.0}}), "fr_negative", {"gap.friction.coulomb", "-1.0", ">= 0"});
+    expect_refused(with({{"tanh_k", 0.0}}), "fr_k", {"gap.friction.tanh_k", "0.0", "> 0"});
+    expect_refused(with({{"stiction", 2.0}}), "fr_key", {"gap.friction.stiction", "viscous, coulomb, tanh_k"});
+    expect_refused(with(3.0), "fr_kind", {"gap.friction", "3.0", "\"coulomb\""});
+}
+
 TEST(GapDocumentCli, refuses_open_loop_fields_in_a_closed_loop)
 {
     nlohmann::json m = lag({{"input_delay", 0.01},

@@ -5,6 +5,10 @@
 # limit; the table is re-sealed with its CRC), rig records without and with Coulomb friction withheld, and
 # gap-plc on each; then gap-plc's and fracdesign gap's refusals. Checks in arm_closed_loop_check.py.
 #   arm_closed_loop.sh FRACDESIGN HIL_BENCH GAP_PLC ARM.json MOVE OUTDIR
+# MOVE is a --move spec of `fracdesign armctrl --arm`, or exp:A .. exp:D for seed 004's experiment tables
+# (`fracdesign armctrl --exp`, Table 8.5's move) on the document's arm (docs/examples/arm_wang).
+# Environment: LIMIT_FACTOR (default 0.8) the lowered limit as a share of the unlimited run's peak command;
+# GYRO_NOISE (default: the document's sensors.imu_noise) the rig's gyro noise std in rad/s.
 set -euo pipefail
 fd=$1 bench=$2 gapplc=$3 arm=$4 move=$5 out=$6
 here=$(cd "$(dirname "$0")" && pwd)
@@ -12,10 +16,14 @@ py=/usr/bin/python3
 rm -rf "$out"; mkdir -p "$out"; cd "$out"
 "$fd" model --arm "$arm" --save-plant plant.bin --gap-nominal nominal.json --closed-loop ctrl.bin \
   --save-scenario scenario.txt --plant-table plant.bin --ctrl-table ctrl.bin --duration 4.0 > /dev/null
-"$fd" armctrl --arm "$arm" --move "$move" --post 0.5 --out ctrl_free.bin > /dev/null
+case $move in
+  exp:*) "$fd" armctrl --exp "${move#exp:}" --post 0.5 --out ctrl_free.bin > /dev/null ;;
+  *) "$fd" armctrl --arm "$arm" --move "$move" --post 0.5 --out ctrl_free.bin > /dev/null ;;
+esac
 "$bench" --scenario scenario.txt --set ctrl.table=ctrl_free.bin --out free > /dev/null
 peak=$($py -c "import csv,sys; print(max(abs(float(r['torque_cmd'])) for r in csv.DictReader(open(sys.argv[1]))))" free/signals.csv)
-limit=$($py -c "print(0.8 * $peak)")
+limit=$($py -c "print(${LIMIT_FACTOR:-0.8} * $peak)")
+if [ -n "${GYRO_NOISE:-}" ]; then sed -i "s/^imu.gyro_noise = .*/imu.gyro_noise = $GYRO_NOISE/" scenario.txt; fi
 $py "$here/ptable_set.py" ctrl_free.bin ctrl.bin torque_limit "$limit"
 rated=$(sed -n 's/^drive.torque_rated = //p' scenario.txt)
 fc=$($py -c "print(0.1 * float('$rated'))")
@@ -24,11 +32,14 @@ fc=$($py -c "print(0.1 * float('$rated'))")
 # Coulomb withheld, under the same lowered limit: the friction makes the loop ride it for most of the
 # record, where the replay's gap is within 10 % of its value at the true Fc only for Fc within 1 % of it
 # (docs/gap.md); the fit's continuation in record length reaches that basin.
-"$bench" --scenario scenario.txt --set plant.fric_b0="$fc" --out coulomb > /dev/null
-# The rig's CSV does not log when the PLC's tasks start (the controller node starts them once the drive is
-# enabled and an IMU reading came): the records get a column `run`, 1 from the first sample whose command
-# is nonzero (the gyro noise makes the first task cycle's command nonzero), and the nominal maps it to Run.
-for r in clean quiet coulomb; do $py "$here/../../scripts/add_run_column.py" $r/signals.csv $r/record.csv; done
+# On an arm with known friction (the nominal's gap.friction) the withheld Coulomb friction comes on top of it.
+b0=$(sed -n 's/^plant.fric_b0 = //p' scenario.txt)
+"$bench" --scenario scenario.txt --set plant.fric_b0="$($py -c "print(${b0:-0} + $fc)")" --out coulomb > /dev/null
+# The rig's CSV logs when the PLC's tasks start (column `run`: the controller node starts them once the drive
+# is enabled and an IMU reading came), and the nominal maps it to ArmCtrl's Run. A record of a controller
+# whose first commands are zero (Exp. A's table before the move at 0.5 s, no gyro noise) cannot tell its
+# start from its command.
+for r in clean quiet coulomb; do cp $r/signals.csv $r/record.csv; done
 $py - nominal.json nominal_run.json <<'PY'
 import json, sys
 n = json.load(open(sys.argv[1]))

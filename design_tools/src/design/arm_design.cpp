@@ -542,6 +542,31 @@ int arm_imu_reading_cycles(const ArmDocument& a) { return 2 * std::max(1, a.dout
 
 namespace {
 
+// The document's friction (seed 004 (5.2): b1 v + b0 tanh(k v) on the motor, as the rig's plant applies
+// it) as the nominal's gap.friction, so the replay runs what the rig runs; an arm without known friction
+// gets none. The gap's friction effects then fit what lies beyond it.
+// The viscous part is linear and goes into the plant itself (with_viscous: exact in continuous time, as
+// the rig integrates it), the Coulomb part into gap.friction (the replay holds it over the cycle).
+nlohmann::json with_friction(const ArmDocument& a, nlohmann::json gap)
+{
+    if (a.friction.known && a.friction.b0 != 0.0) gap["friction"] = {{"coulomb", a.friction.b0}, {"tanh_k", a.friction.k}};
+    return gap;
+}
+
+// The document's viscous friction b1 on the motor, the plant's torque input 0 and motor velocity row
+// vrow: A - b1 B(:, 0) vrow.
+void with_viscous(const ArmDocument& a, StateSpace& m, Eigen::Index vrow)
+{
+    if (a.friction.known && a.friction.b1 != 0.0) m.A -= a.friction.b1 * m.B.col(0) * m.C.row(vrow);
+}
+
+std::string friction_words(const ArmDocument& a)
+{
+    if (!a.friction.known || (a.friction.b1 == 0.0 && a.friction.b0 == 0.0)) return "no friction";
+    return "the document's friction " + fmt(a.friction.b1) + " v + " + fmt(a.friction.b0) + " tanh(" + fmt(a.friction.k) +
+           " v) N m on the motor (gap.friction)";
+}
+
 // The rig's IMU reading of the link rate, one model for every gap nominal of the arm (open and closed loop).
 // The reading (hil/imu.c, r = arm_imu_reading_cycles acquisitions at T/2 between samples, sent r
 // acquisitions later) is psi'(t_{k-q}) with the age q = h .. 2h - 1 cycles, h = r/2, running through
@@ -586,6 +611,7 @@ nlohmann::json arm_gap_nominal(const ArmDocument& a)
 {
     const ArmBuild b = build_arm_from_document(a, a.design.N, false, {});
     StateSpace m = arm_document_measured(a, b);
+    with_viscous(a, m, 1);
     m.C = m.C.bottomRows(2).eval();  // theta_M', psi'(z_imu)
     m.D = Eigen::MatrixXd::Zero(2, 1);
     m.outputs = {"motor_velocity", "imu_rate"};
@@ -617,7 +643,7 @@ nlohmann::json arm_gap_nominal(const ArmDocument& a)
                                 "open loop from the drive's torque_actual to motor_velocity and imu_rate, first-order hold at T "
                                 "(the drive's torque ramps from the previous torque_actual to this one, state torque_prev), imu_rate " +
                                 imu.ages + " (the rig's IMU reading every " + hs + " cycles, sent " + hs +
-                                " cycles after its sample, as an LTI map), no friction"},
+                                " cycles after its sample, as an LTI map), " + friction_words(a)},
             {"time", "discrete"},
             {"Ts", a.T},
             {"A", mat(A)},
@@ -627,14 +653,15 @@ nlohmann::json arm_gap_nominal(const ArmDocument& a)
             {"inputs", {"torque_actual"}},
             {"outputs", {"motor_velocity", "imu_rate"}},
             {"states", states},
-            {"gap", {{"velocity", "motor_velocity"}, {"force_input", "torque_actual"}}}};
+            {"gap", with_friction(a, {{"velocity", "motor_velocity"}, {"force_input", "torque_actual"}})}};
 }
 
 nlohmann::json arm_gap_nominal_closed(const ArmDocument& a, const std::string& table)
 {
     if (table.empty()) throw std::invalid_argument("--closed-loop: the ArmCtrl table file name is empty");
     const ArmBuild b = build_arm_from_document(a, a.design.N, false, {});
-    const StateSpace m = arm_document_measured(a, b);  // outputs theta_M, theta_M', psi'(z_imu); input tau_M
+    StateSpace m = arm_document_measured(a, b);  // outputs theta_M, theta_M', psi'(z_imu); input tau_M
+    with_viscous(a, m, 1);
     const Eigen::Index n = m.nx();
     // The drive (hil/drive.h, seed 004 Sec. 8.2): the current loop tau_a' = (c - tau_a)/tau_c with the
     // command c held over the cycle, tau_a(k+1) = e tau_a(k) + (1 - e) c(k), e = exp(-T/tau_c) (0 for
@@ -691,7 +718,7 @@ nlohmann::json arm_gap_nominal_closed(const ArmDocument& a, const std::string& t
                                 std::to_string(b.beam.N) + ", " + std::to_string(n) + " states), the drive's delay d_i = " +
                                 std::to_string(a.di) + " cycles, peak torque limit, current loop (tau_c = " + fmt(a.current_tau) +
                                 " s) and first-order hold to the shaft; imu_rate " + imu.ages + " (the rig's IMU reading every " + hs +
-                                " cycles, sent " + hs + " cycles after its sample, as an LTI map); no friction"},
+                                " cycles, sent " + hs + " cycles after its sample, as an LTI map); " + friction_words(a)},
             {"time", "discrete"},
             {"Ts", a.T},
             {"A", mat(A)},
@@ -712,6 +739,7 @@ nlohmann::json arm_gap_nominal_closed(const ArmDocument& a, const std::string& t
                                       {"delay_samples", a.di},
                                       {"saturation", a.torque_peak}}}}}};
     if (!hold.empty()) doc["gap"]["output_hold"] = hold;
+    doc["gap"] = with_friction(a, doc["gap"]);
     return doc;
 }
 

@@ -2,7 +2,7 @@
 // plant's equations (nominal.hpp, docs/gap.md "What the document states"):
 // a fractional plant's realization, the open-loop input delay, the initial
 // state, the sensors' noise, the actuator's limits and the sensors read
-// less often than every sample (output_hold).
+// less often than every sample (output_hold), the known friction.
 #include "fracdesign/gap/nominal.hpp"
 
 #include "fracdesign/model_json.hpp"
@@ -184,6 +184,27 @@ void read_known_section(const json& g, double plant_delay_s, NominalModel& m)
                 h.phase = int(ph.get<long>());
             }
             m.holds.push_back(h);
+        }
+    }
+    if (g.contains("friction")) {
+        // The friction the user knows (NominalModel::KnownFriction), e.g. an arm document's.
+        const json& v = g.at("friction");
+        const std::string allowed = "an object {\"viscous\": b1 >= 0, \"coulomb\": b0 >= 0, \"tanh_k\": k > 0 (optional)}";
+        if (!v.is_object() || v.empty()) refuse("friction", v, allowed);
+        if (m.velocity < 0) refuse("friction", v, "left out, or gap.velocity stated (the friction's velocity)");
+        for (auto it = v.begin(); it != v.end(); ++it) {
+            const std::string f = "friction." + it.key();
+            if (it.key() != "viscous" && it.key() != "coulomb" && it.key() != "tanh_k")
+                refuse(f, it.value(), "left out (allowed: viscous, coulomb, tanh_k)");
+            const double x = finite_number(it.value(), f, it.key() == "tanh_k" ? "a finite gain > 0 in s per velocity unit"
+                                                                                : "a finite coefficient >= 0");
+            if (it.key() == "tanh_k") {
+                if (!(x > 0)) refuse(f, it.value(), "a finite gain > 0 in s per velocity unit (left out: dry friction)");
+                m.friction.tanh_k = x;
+            } else {
+                if (x < 0) refuse(f, it.value(), "a finite coefficient >= 0");
+                (it.key() == "viscous" ? m.friction.viscous : m.friction.coulomb) = x;
+            }
         }
     }
     if (g.contains("input_limits")) {

@@ -462,7 +462,32 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
         up[size_t(fi)] = a;
         double f = 0.0;
         if (m.velocity >= 0) {
-            f = Foff + Fv * v;
+            // The nominal's known friction (gap.friction) and the effects' beyond it.
+            f = Foff + (Fv + m.friction.viscous) * v;
+            // A smooth Coulomb term b0 tanh(k v) near rest is a damper b0 k, stiff against the
+            // sample (arm_wang: bv b0 k = 0.094 per sample, where the plant integrates it in
+            // sub-steps): held over the sample at the midpoint velocity (v(k) + v(k+1))/2, the
+            // trapezoidal rule, with v(k+1) = vlin - bv f_k linear in it; f_k is the one root of
+            // f - b0 tanh(k (v + vlin - bv f)/2), increasing in f for bv >= 0 (Newton, from the
+            // explicit value; a few steps).
+            // The Coulomb effect's Fc then adds to b0 (friction beyond the known, of its law).
+            const bool known_smooth = m.friction.coulomb != 0.0 && m.friction.tanh_k > 0;
+            if (known_smooth) {
+                const double b0 = m.friction.coulomb + Fc, kk = m.friction.tanh_k;
+                double fk = b0 * std::tanh(kk * v);
+                if (bv > 0.0) {
+                    double vlin = -bv * f;
+                    for (int j = 0; j < nx; ++j) vlin += cvA[size_t(j)] * x[size_t(j)] + cv[size_t(j)] * series_corr[size_t(j)];
+                    for (int l = 0; l < nu; ++l) vlin += cvB[size_t(l)] * up[size_t(l)];
+                    for (int it = 0; it < 20; ++it) {
+                        const double th = std::tanh(0.5 * kk * (v + vlin - bv * fk)), r = fk - b0 * th;
+                        const double step = r / (1.0 + 0.5 * b0 * kk * bv * (1.0 - th * th));
+                        fk -= step;
+                        if (std::fabs(step) <= 1e-13 * b0) break;
+                    }
+                }
+                f += fk;
+            }
             if (fractional) {
                 frac_real d = 0;
                 if (frac_gl_step(&gl_v, frac_real(v), &d) != FRAC_OK) d = std::numeric_limits<double>::quiet_NaN();
@@ -472,8 +497,9 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
             // discrete stick-slip: the force is the one that stops the
             // velocity within this step, limited to +-L(v); so sliding gets
             // L sign(v) exactly and sticking holds without chattering.
-            double level = Fc;
+            double level = known_smooth ? 0.0 : Fc;
             if (stribeck) level += Sc + (Ss - Sc) * std::exp(-(v / Svs) * (v / Svs));
+            if (!known_smooth) level += m.friction.coulomb;  // known dry friction (no tanh_k)
             if (level != 0.0) {
                 if (bv != 0.0) {
                     double vfree = -bv * f;

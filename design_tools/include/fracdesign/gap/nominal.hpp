@@ -112,6 +112,14 @@ struct NominalModel {
     // current loop, a torque ramp) lie between force_input and the shaft. Zero in the
     // record (open loop: need not be a column) and from the controller (closed loop).
     int friction_input = 0;
+    // gap.friction: the friction the user knows (an arm document's, seed 004 (5.2)), part of the
+    // nominal: viscous v + coulomb s(v) on friction_input at the velocity gap.velocity, s(v) =
+    // tanh(tanh_k v) when tanh_k > 0 (libfrac's linear model, the HIL plant's), else the dry
+    // stick-slip sign of the friction effects. The friction effects fit what lies beyond it.
+    struct KnownFriction {
+        double viscous = 0.0, coulomb = 0.0, tanh_k = 0.0;
+        bool any() const { return viscous != 0.0 || coulomb != 0.0; }
+    } friction;
     std::vector<Coupling> couplings;  // gap.coupling (none, one or several springs / flexible modes)
     std::map<std::string, std::string> units;  // gap.units: signal name -> unit (optional, for the report)
 
