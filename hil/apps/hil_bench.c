@@ -192,11 +192,8 @@ static int merge_signals(const char *dir)
         double t;
         int i;
         /* the controller's columns after imu_rate (fault, run) go last: split at its 6th comma */
-        for (i = 0; i < 6 && fault; i++) {
-            fault = strchr(fault, ',');
-            if (fault && i < 5)
-                fault++;
-        }
+        for (i = 0; i < 6 && fault; i++)
+            fault = strchr(i ? fault + 1 : fault, ',');
         if (!fgets(lp, sizeof lp, p) || !fault) {
             rc = -1;
             break;

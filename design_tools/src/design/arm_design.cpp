@@ -564,7 +564,7 @@ std::string friction_words(const ArmDocument& a)
 {
     if (!a.friction.known || (a.friction.b1 == 0.0 && a.friction.b0 == 0.0)) return "no friction";
     return "the document's friction " + fmt(a.friction.b1) + " v + " + fmt(a.friction.b0) + " tanh(" + fmt(a.friction.k) +
-           " v) N m on the motor (gap.friction)";
+           " v) N m on the motor (the viscous part in the plant, the Coulomb part as gap.friction)";
 }
 
 // The rig's IMU reading of the link rate, one model for every gap nominal of the arm (open and closed loop).

@@ -464,6 +464,18 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
         if (m.velocity >= 0) {
             // The nominal's known friction (gap.friction) and the effects' beyond it.
             f = Foff + (Fv + m.friction.viscous) * v;
+            // v(k+1) without this step's friction force, linear in the state and the inputs
+            // (friction then moves it by -bv f); computed once, used by both friction steps below.
+            double vnext = std::numeric_limits<double>::quiet_NaN();
+            auto velocity_next = [&]() {
+                if (std::isnan(vnext)) {
+                    vnext = 0.0;
+                    for (int j = 0; j < nx; ++j) vnext += cvA[size_t(j)] * x[size_t(j)];
+                    for (int l = 0; l < nu; ++l) vnext += cvB[size_t(l)] * up[size_t(l)];
+                    for (int j = 0; j < nx; ++j) vnext += cv[size_t(j)] * series_corr[size_t(j)];
+                }
+                return vnext;
+            };
             // A smooth Coulomb term b0 tanh(k v) near rest is a damper b0 k, stiff against the
             // sample (arm_wang: bv b0 k = 0.094 per sample, where the plant integrates it in
             // sub-steps): held over the sample at the midpoint velocity (v(k) + v(k+1))/2, the
@@ -476,9 +488,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
                 const double b0 = m.friction.coulomb + Fc, kk = m.friction.tanh_k;
                 double fk = b0 * std::tanh(kk * v);
                 if (bv > 0.0) {
-                    double vlin = -bv * f;
-                    for (int j = 0; j < nx; ++j) vlin += cvA[size_t(j)] * x[size_t(j)] + cv[size_t(j)] * series_corr[size_t(j)];
-                    for (int l = 0; l < nu; ++l) vlin += cvB[size_t(l)] * up[size_t(l)];
+                    const double vlin = velocity_next() - bv * f;
                     for (int it = 0; it < 20; ++it) {
                         const double th = std::tanh(0.5 * kk * (v + vlin - bv * fk)), r = fk - b0 * th;
                         const double step = r / (1.0 + 0.5 * b0 * kk * bv * (1.0 - th * th));
@@ -502,10 +512,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
             if (!known_smooth) level += m.friction.coulomb;  // known dry friction (no tanh_k)
             if (level != 0.0) {
                 if (bv != 0.0) {
-                    double vfree = -bv * f;
-                    for (int j = 0; j < nx; ++j) vfree += cvA[size_t(j)] * x[size_t(j)];
-                    for (int l = 0; l < nu; ++l) vfree += cvB[size_t(l)] * up[size_t(l)];
-                    for (int j = 0; j < nx; ++j) vfree += cv[size_t(j)] * series_corr[size_t(j)];
+                    const double vfree = velocity_next() - bv * f;
                     const double stop = vfree / bv, lv = std::fabs(level);
                     f += std::min(std::max(stop, -lv), lv);
                 } else {

@@ -118,7 +118,6 @@ struct NominalModel {
     // stick-slip sign of the friction effects. The friction effects fit what lies beyond it.
     struct KnownFriction {
         double viscous = 0.0, coulomb = 0.0, tanh_k = 0.0;
-        bool any() const { return viscous != 0.0 || coulomb != 0.0; }
     } friction;
     std::vector<Coupling> couplings;  // gap.coupling (none, one or several springs / flexible modes)
     std::map<std::string, std::string> units;  // gap.units: signal name -> unit (optional, for the report)
