@@ -7,6 +7,8 @@
 #   arm_closed_loop.sh FRACDESIGN HIL_BENCH GAP_PLC ARM.json MOVE OUTDIR
 # MOVE is a --move spec of `fracdesign armctrl --arm`, or exp:A .. exp:D for seed 004's experiment tables
 # (`fracdesign armctrl --exp`, Table 8.5's move) on the document's arm (docs/examples/arm_wang).
+# STATE_NOISE=1: the gap nominal states the rig's sensor noise (gap.noise), so `none` is decided against the
+# noise floor the stated noise leaves through the loop (docs/gap.md), and the fits weight the outputs by it.
 # Environment: LIMIT_FACTOR (default 0.8) the lowered limit as a share of the unlimited run's peak command;
 # GYRO_NOISE (default: the document's sensors.imu_noise) the rig's gyro noise std in rad/s.
 set -euo pipefail
@@ -40,11 +42,23 @@ b0=$(sed -n 's/^plant.fric_b0 = //p' scenario.txt)
 # whose first commands are zero (Exp. A's table before the move at 0.5 s, no gyro noise) cannot tell its
 # start from its command.
 for r in clean quiet coulomb; do cp $r/signals.csv $r/record.csv; done
-$py - nominal.json nominal_run.json <<'PY'
-import json, sys
+# With STATE_NOISE=1 the nominal states the rig's sensors (gap.noise, std about the true value) as a user states theirs:
+# the encoder reports floor(theta 2^bits / 2 pi) (hil/src/drive.c), an error uniform in [0, q): rms q/sqrt(3);
+# the drive's velocity and the gyro go on the wire in steps of HIL_VEL_LSB = 1e-6 and HIL_GYRO_LSB = 1e-3 rad/s
+# (hil/include/hil/canopen.h): rms step/sqrt(12), the gyro's with its white noise imu.gyro_noise. In this
+# closed loop the controller reads that noise and moves the arm with it: the noise floor is the noise-only
+# residual of the replay run with it (docs/gap.md, gap.noise).
+bits=$(sed -n 's/^drive.encoder_bits = //p' scenario.txt)
+gyro=$(sed -n 's/^imu.gyro_noise = //p' scenario.txt)
+$py - nominal.json nominal_run.json "$bits" "${gyro:-0}" "${STATE_NOISE:-0}" <<'PY'
+import json, math, sys
 n = json.load(open(sys.argv[1]))
 n["gap"]["closed_loop"]["references"] = ["run"]
 n["gap"]["closed_loop"]["controller"]["inputs"]["Run"] = "run"
+q = 2 * math.pi / 2 ** int(sys.argv[3])
+if sys.argv[5] == "1":
+    n["gap"]["noise"] = {"motor_angle": q / math.sqrt(3), "motor_velocity": 1e-6 / math.sqrt(12),
+                         "imu_rate": math.sqrt(float(sys.argv[4]) ** 2 + 1e-6 / 12)}
 json.dump(n, open(sys.argv[2], "w"), indent=1)
 PY
 "$gapplc" --model nominal_run.json --data clean/record.csv --out gap_clean > gap_clean.txt 2>/dev/null

@@ -3,7 +3,9 @@
 // stages.hpp, docs/gap.md).
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <limits>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -64,6 +66,53 @@ void check_nominal_replay(const NominalModel& model, const ReplayTrace& nom, con
                       rho > 1.0 + 1e-9 ? (model.closed_loop ? " (unstable open loop: check the loop closes it)" : " (unstable)") : "");
         throw std::runtime_error(b);
     }
+}
+
+// The residual the sensors' noise alone leaves in a closed loop, per compared
+// output (rms over rows [first, first + n) of setup's record, per draw): the
+// controller reads each sensor's noise, so the plant moves with it (through
+// the loop's complementary sensitivity, and the limits when it rides them); a
+// record of the exact nominal differs from the noise-free replay by that
+// motion as well as by the noise itself. The replay is run with white
+// Gaussian noise of the stated std on every sensor gap.noise names (added
+// before the reading's hold, as the sensor adds it), kLoopNoiseDraws draws
+// with fixed seeds, and compared with the noise-free replay `clean`. Open
+// loop this is the stated std itself (the noise does not feed back).
+Eigen::MatrixXd loop_noise_draws(const NominalModel& model, const ReplaySetup& setup, const ReplayTrace& clean,
+                                 Eigen::Index first, Eigen::Index n)
+{
+    const Eigen::Index rows = first + n, ny = model.C.rows();
+    std::vector<double> sd(size_t(ny), 0.0);
+    for (Eigen::Index i = 0; i < ny; ++i) {
+        const auto it = model.noise.find(model.outputs[size_t(i)]);
+        if (it != model.noise.end()) sd[size_t(i)] = it->second;
+    }
+    const Eigen::Index ncmp = Eigen::Index(setup.compared.size());
+    Eigen::MatrixXd out(kLoopNoiseDraws, ncmp), w(rows, ny);
+    for (int d = 0; d < kLoopNoiseDraws; ++d) {
+        std::mt19937_64 gen(0x6e6f697365ULL + std::uint64_t(d));  // fixed: the floor is a property of the record
+        std::normal_distribution<double> g(0.0, 1.0);
+        for (Eigen::Index i = 0; i < ny; ++i)
+            for (Eigen::Index k = 0; k < rows; ++k) w(k, i) = sd[size_t(i)] * g(gen);
+        const ReplayTrace tr = replay(setup, {}, rows, &w);
+        out.row(d) = ((tr.y.middleRows(first, n) - clean.y.middleRows(first, n)).colwise().squaredNorm() / double(n)).cwiseSqrt();
+    }
+    for (Eigen::Index c = 0; c < ncmp; ++c) {
+        const double lim = 1e6 * std::max(sd[size_t(setup.compared[size_t(c)])], 1e-300);
+        if (!out.col(c).allFinite() || out.col(c).maxCoeff() > lim)
+            throw std::runtime_error("model gap.noise: the closed loop replayed with the stated sensor noise runs away (output '" +
+                                     model.outputs[size_t(setup.compared[size_t(c)])] +
+                                     "'): the noise floor cannot be computed; check the noise std against the loop's limits");
+    }
+    return out;
+}
+
+// Per output: the rms over the draws.
+std::vector<double> draws_rms(const Eigen::MatrixXd& draws)
+{
+    std::vector<double> r;
+    for (Eigen::Index c = 0; c < draws.cols(); ++c) r.push_back(std::sqrt(draws.col(c).squaredNorm() / double(draws.rows())));
+    return r;
 }
 
 }  // namespace
@@ -130,6 +179,15 @@ Baseline baseline(const NominalModel& model, const Signals& data, const Signals*
     B.nom = replay(B.fit_setup, {});
     const ReplayTrace& nom = B.nom;
     check_nominal_replay(model, nom, ymeas, outs, data.source);
+    // The noise floor (gap.noise) in a closed loop: the noise-only residual,
+    // over the fit rows (the fits' residual scale) and the evaluated rows.
+    B.eval_noise_sd = noise_sd;
+    if (!noise_sd.empty() && model.closed_loop) {
+        noise_sd = draws_rms(loop_noise_draws(model, B.fit_setup, nom, 0, R.fit_samples));
+        B.eval_noise_draws = validate ? loop_noise_draws(model, B.eval_setup_v, replay(B.eval_setup_v, {}), 0, R.eval_samples)
+                                      : loop_noise_draws(model, B.fit_setup, nom, R.eval_first, R.eval_samples);
+        B.eval_noise_sd = draws_rms(B.eval_noise_draws);
+    }
     // Each coupling's scale (FitContext::Sq, set per site by which()).
     std::vector<double>& coupling_Sq = B.coupling_Sq;
     for (size_t i = 0; i < model.couplings.size(); ++i)

@@ -74,7 +74,7 @@ GapResult::Confidence confidence_of(const std::vector<FitReport>& candidates, co
 Evaluator held_out(const Baseline& B, const Signals& data, GapResult& R)
 {
     const std::vector<std::string>& outs = B.outs;
-    const std::vector<double>& noise_sd = B.noise_sd;
+    const std::vector<double>& noise_sd = B.eval_noise_sd;
     const Eigen::MatrixXd& yeval = B.yeval;
     const Signals& evsig = *B.evsig;
     Evaluator E{&B.eval_setup(), yeval, R.eval_first, R.eval_samples, 0.0, data.Ts, {}, {}};
@@ -85,7 +85,8 @@ Evaluator held_out(const Baseline& B, const Signals& data, GapResult& R)
     const Eigen::MatrixXd yhat_nom = E.simulate({});
     R.gap_before = nrmse(yeval, yhat_nom, E.scale);
     // gap.noise: channels weighted by (std/noise)^2 in the aggregate gap,
-    // and the floor the noise alone leaves.
+    // and the floor the noise alone leaves (in a closed loop, with the motion
+    // the noise makes through the controller: Baseline::eval_noise_sd).
     if (!noise_sd.empty()) {
         std::vector<double> floor;
         for (size_t c = 0; c < outs.size(); ++c) {
@@ -93,6 +94,28 @@ Evaluator held_out(const Baseline& B, const Signals& data, GapResult& R)
             floor.push_back(noise_sd[c] / E.scale[c]);
         }
         R.noise_floor = total_gap(floor, E.weight);
+        R.noise_floor_outputs = floor;
+        R.noise_floor_limit = kNoiseFloorFactor * R.noise_floor;
+        // Closed loop: the noise-only gap of each draw; the noise drives the
+        // plant's slow motion too, whose rms over the held-out rows spreads
+        // from draw to draw far more than white noise's: a record is at its
+        // floor also below the one-sided 99 % prediction bound of a new
+        // draw's noise-only gap, mean + t s sqrt(1 + 1/n) (Student's t with
+        // n - 1 degrees of freedom: 2.998 for the 8 draws).
+        const Eigen::MatrixXd& draws = B.eval_noise_draws;
+        if (draws.rows() > 1) {
+            Eigen::VectorXd g(draws.rows());
+            for (Eigen::Index d = 0; d < draws.rows(); ++d) {
+                std::vector<double> nd;
+                for (size_t c = 0; c < outs.size(); ++c) nd.push_back(draws(d, Eigen::Index(c)) / E.scale[c]);
+                g(d) = total_gap(nd, E.weight);
+            }
+            const double spread = std::sqrt((g.array() - g.mean()).square().sum() / double(g.size() - 1));
+            static_assert(kLoopNoiseDraws == 8, "kT99 is Student's t for 7 degrees of freedom");
+            constexpr double kT99 = 2.998;
+            const double n = double(g.size());
+            R.noise_floor_limit = std::max(R.noise_floor_limit, g.mean() + kT99 * std::sqrt(1.0 + 1.0 / n) * spread);
+        }
     }
     R.gap_before_total = total_gap(R.gap_before, E.weight);
     E.gap_before = R.gap_before_total;
@@ -106,7 +129,7 @@ void how_far(const std::vector<std::pair<FitReport, EffectSetup>>& singles, cons
     // Forward selection: add the best, refit all jointly, repeat while the
     // held-out gap shrinks by at least `margin` (relative) and the penalized score grows.
     R.verdict = none_candidate(R);
-    const bool at_noise_floor = R.noise_floor > 0 && R.gap_before_total <= kNoiseFloorFactor * R.noise_floor;
+    const bool at_noise_floor = R.noise_floor > 0 && R.gap_before_total <= R.noise_floor_limit;
     if (!at_noise_floor && !singles.empty() && singles.front().first.score >= opt.margin) {
         FitProblem cur = base_problem;
         cur.effects = {singles.front().second};

@@ -222,7 +222,8 @@ SeriesHold series_mode_hold(const NominalModel& m, double w, double zeta)
 
 }  // namespace
 
-ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effects, Eigen::Index n)
+ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effects, Eigen::Index n,
+                   const Eigen::MatrixXd* sensor_noise)
 {
     const NominalModel& m = *s.model;
     const Eigen::Index N = n < 0 ? s.samples() : std::min(n, s.samples());
@@ -412,6 +413,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
             const int n = int(dout[size_t(i)]);
             const double f = dout[size_t(i)] - n;
             double y = (1 - f) * h_out.lagged(n + 1)[i] + (f > 0 ? f * h_out.lagged(n + 2)[i] : 0.0) + offset[size_t(i)];
+            if (sensor_noise) y += (*sensor_noise)(k, i);
             yraw[size_t(i)] = y;
             if (step[size_t(i)] > 0) y = step[size_t(i)] * std::round(y / step[size_t(i)]);
             ysens[size_t(i)] = y;

@@ -119,7 +119,12 @@ nlohmann::json result_json(const GapResult& R)
                  {"continued_candidates", R.continued}};
     if (R.noise_floor > 0) {
         j["noise_floor"] = num(R.noise_floor);
-        j["criterion"]["noise_floor"] = "gap.noise: a gap_before_total within 1.1 x the noise floor is none; channels weighted by (std/noise)^2";
+        j["noise_floor_limit"] = num(R.noise_floor_limit);
+        j["noise_floor_outputs"] = per_output(R.outputs, R.noise_floor_outputs);
+        j["criterion"]["noise_floor"] = "gap.noise: a gap_before_total within noise_floor_limit (1.1 x the noise floor) is none; "
+                                        "channels weighted by (std/noise)^2; in a closed loop the noise is the noise-only residual, "
+                                        "the replay run with the stated sensor noise read by the controller (8 draws) against the "
+                                        "noise-free replay, and the limit at least the one-sided 99 % prediction bound of a draw's noise-only gap";
     }
     if (!R.realization.empty()) j["data"]["realization"] = R.realization;
     j["skipped"] = R.skipped;

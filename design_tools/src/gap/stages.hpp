@@ -180,9 +180,19 @@ std::vector<double> normalized(const FitProblem& P, const std::vector<EffectInst
 // The nominal model against the record. The fits point to the replay
 // set-ups (FitProblem::setup, Evaluator::eval): a Baseline stays where it
 // was made while they run.
+// Draws of the sensors' noise through a closed loop (Baseline::eval_noise_draws).
+inline constexpr int kLoopNoiseDraws = 8;
+
 struct Baseline {
     std::vector<std::string> outs;    // compared outputs
-    std::vector<double> noise_sd;     // gap.noise per compared output (empty: not stated)
+    // gap.noise (empty: not stated): the residual the sensors' noise alone
+    // leaves, per compared output, over the fit rows (noise_sd) and the
+    // evaluated rows (eval_noise_sd). Open loop that is the stated std; in a
+    // closed loop the controller reads the noise and moves the plant
+    // (loop_noise_draws, baseline.cpp: eval_noise_draws holds each of the
+    // kLoopNoiseDraws draws' rms per output, empty open loop).
+    std::vector<double> noise_sd, eval_noise_sd;
+    Eigen::MatrixXd eval_noise_draws;
     ReplaySetup fit_setup, eval_setup_v;
     bool validated = false;           // a separate validation record is evaluated
     const Signals* evsig = nullptr;   // the evaluated record (validation record or the data)

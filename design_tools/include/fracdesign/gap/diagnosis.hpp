@@ -93,9 +93,14 @@ struct GapResult {
         std::vector<LookAlike> look_alikes;
     } confidence;
     // gap.noise: the aggregate gap the sensors' noise alone leaves (the
-    // held-out nrmse of a perfect model), 0 when the document states no
-    // noise; a gap_before_total within kNoiseFloorFactor of it is `none`.
-    double noise_floor = 0.0;
+    // held-out nrmse of a perfect model; in a closed loop with the motion the
+    // noise makes through the controller), 0 when the document states no
+    // noise; a gap_before_total within noise_floor_limit is `none`:
+    // kNoiseFloorFactor x the floor, in a closed loop at least the one-sided
+    // 99 % prediction bound of the noise-only gap from its draws.
+    // noise_floor_outputs: the floor per compared output (empty: no noise).
+    double noise_floor = 0.0, noise_floor_limit = 0.0;
+    std::vector<double> noise_floor_outputs;
     // Single candidates fitted a second time by continuation in record
     // length (docs/gap.md "Continuation in record length").
     size_t continued = 0;

@@ -235,7 +235,11 @@ struct ReplayTrace {
 
 // Replays the nominal model with the given effects over the first `n`
 // samples (all when n < 0). Each effect kind appears at most once.
-ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effects, Eigen::Index n = -1);
+// `sensor_noise` (samples x model outputs, optional): added to each sensor's
+// reading before its quantization and hold, so that in a closed loop the
+// controller reads it too (the closed-loop noise floor, baseline.cpp).
+ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effects, Eigen::Index n = -1,
+                   const Eigen::MatrixXd* sensor_noise = nullptr);
 
 }  // namespace gap
 }  // namespace fracdesign
