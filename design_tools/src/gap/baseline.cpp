@@ -111,7 +111,7 @@ Eigen::MatrixXd loop_noise_draws(const NominalModel& model, const ReplaySetup& s
 std::vector<double> draws_rms(const Eigen::MatrixXd& draws)
 {
     std::vector<double> r;
-    for (Eigen::Index c = 0; c < draws.cols(); ++c) r.push_back(std::sqrt(draws.col(c).squaredNorm() / double(draws.rows())));
+    for (Eigen::Index c = 0; c < draws.cols(); ++c) r.push_back(rms(draws.col(c)));
     return r;
 }
 
