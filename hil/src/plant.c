@@ -62,8 +62,10 @@ static int table_get(struct hil_plant *pl, const frac_ptable *t, const char *nam
 }
 
 /* The asub steps of a half cycle composed (hil/plant.h): from Ad (column-
- * major) and Bd, the rows C_2 Ad^k and columns Ad^k Bd (k < asub), the
- * scalars C_2 Ad^k Bd and Am = Ad^asub. P, Q: n x n scratch. */
+ * major), Bd and Bd1, the rows C_2 Ad^k (k <= asub: the last gives the end
+ * velocity of the last step), the columns Ad^k Bd and scalars C_2 Ad^k Bd
+ * (k < asub), Am = Ad^asub, the ramp's column sum_k Ad^k Bd1 and its
+ * velocity terms sum_{i<k} C_2 Ad^i Bd1 (k <= asub). P, Q: n x n scratch. */
 static void compose(struct hil_plant *pl, double *P, double *Q)
 {
     const unsigned n = pl->an, m = pl->asub;
@@ -71,22 +73,31 @@ static void compose(struct hil_plant *pl, double *P, double *Q)
     for (j = 0; j < n; j++)
         for (i = 0; i < n; i++)
             P[j * n + i] = i == j ? 1.0 : 0.0;
-    for (k = 0; k < m; k++) {
-        double *r = pl->vrow + (size_t)k * n, *b = pl->bcol + (size_t)k * n;
+    for (i = 0; i < n; i++)
+        pl->bramp[i] = 0.0;
+    for (k = 0; k <= m; k++) {
+        double *r = pl->vrow + (size_t)k * n, *b = pl->bcol + (size_t)k * n, c1 = 0.0;
         for (j = 0; j < n; j++) {
             double a = 0.0;
             for (i = 0; i < n; i++)
                 a += pl->C[n + i] * P[j * n + i];
             r[j] = a;
         }
+        if (k == m)
+            break;
         for (i = 0; i < n; i++)
             b[i] = 0.0;
         for (j = 0; j < n; j++)
-            for (i = 0; i < n; i++)
+            for (i = 0; i < n; i++) {
                 b[i] += P[j * n + i] * pl->Bd[j];
+                pl->bramp[i] += P[j * n + i] * pl->Bd1[j];
+            }
         pl->vb[k] = 0.0;
-        for (j = 0; j < n; j++)
+        for (j = 0; j < n; j++) {
             pl->vb[k] += r[j] * pl->Bd[j];
+            c1 += r[j] * pl->Bd1[j];
+        }
+        pl->vb1[k + 1] = pl->vb1[k] + c1;
         for (j = 0; j < n; j++) /* Q = Ad P */
             for (i = 0; i < n; i++) {
                 double a = 0.0;
@@ -169,6 +180,15 @@ static int load_arm(struct hil_plant *pl)
                 pl->Ad[j * n + i] = Ac[i * n + j];
     if (st == HIL_OK)
         st = table_get(pl, &t, "Bd", n, 1, tmp, pl->Bd);
+    /* Bd1 (the ramp's column) is optional: tables written before it hold the
+     * torque at its mid-step value (hil/plant.h) */
+    memset(pl->Bd1, 0, sizeof pl->Bd1);
+    memset(pl->vb1, 0, sizeof pl->vb1);
+    if (st == HIL_OK) {
+        frac_ptable_entry e;
+        if (frac_ptable_find(&t, "Bd1", &e) == FRAC_OK)
+            st = table_get(pl, &t, "Bd1", n, 1, tmp, pl->Bd1);
+    }
     if (st == HIL_OK)
         st = table_get(pl, &t, "C", 4, n, tmp, pl->C);
     if (st == HIL_OK)
@@ -320,32 +340,62 @@ static void rk4(struct hil_plant *pl, double h, double tau0, double slope, unsig
     pl->psi_dd = k1[3] + k1[5];
 }
 
-/* Arm: the table's m = asub ZOH steps over [0, T/2] with torque
- * tau(s) = tau0 + slope * s held at its value in the middle of each step,
- * composed: the friction input of step k from the motor velocity
- *   v_k = C_2 Ad^k x_0 + sum_{j<k} C_2 Ad^(k-1-j) Bd u_j,
- * then x_m = Ad^m x_0 + sum_k Ad^(m-1-k) Bd u_k (one n x n product per half
- * cycle instead of m). */
+/* The friction held over a step whose velocity goes from v0 to
+ * vfree - g tau_f (hil/plant.h): tau_f = F((v0 + vfree - g tau_f) / 2) by
+ * fixed-point iteration from the explicit F(v0); the explicit value where
+ * the iteration does not contract within HIL_PLANT_FRICTION_ITER steps. */
+static double step_friction(frac_friction *fr, double v0, double vfree, double g)
+{
+    frac_real t = 0;
+    double f0, f, last = 0.0;
+    unsigned it;
+    frac_friction_eval(fr, (frac_real)v0, &t);
+    f = f0 = (double)t;
+    for (it = 0; it < HIL_PLANT_FRICTION_ITER; it++) {
+        double d;
+        frac_friction_eval(fr, (frac_real)(0.5 * (v0 + vfree - g * f)), &t);
+        d = fabs((double)t - f);
+        f = (double)t;
+        if (d <= 1e-13 * (1.0 + fabs(f)))
+            return f;
+        if (it > 0 && d > 0.5 * last)
+            break; /* not contracting */
+        last = d;
+    }
+    return f0;
+}
+
+/* Arm: the table's m = asub steps over [0, T/2] with torque
+ * tau(s) = tau0 + slope * s, each step its mid-step value less the friction
+ * u_k (held over the step) through Bd and the ramp about it through Bd1
+ * (exact), composed: the motor velocity at the end of step k
+ *   v_(k+1) = C_2 Ad^(k+1) x_0 + sum_{j<=k} C_2 Ad^(k-j) Bd u_j + C_2 sum_{i<=k} Ad^i Bd1 slope
+ * is linear in the step's friction (coefficient -C_2 Bd), which is held at
+ * the mean of v_k and v_(k+1) (step_friction); then
+ * x_m = Ad^m x_0 + sum_k Ad^(m-1-k) (Bd u_k + Bd1 slope) (one n x n product
+ * per half cycle instead of m). */
 static void arm_half(struct hil_plant *pl, double tau0, double slope)
 {
     const unsigned n = pl->an, m = pl->asub;
-    double *x = pl->ax, *y = pl->ay, u[HIL_PLANT_ARM_SUBMAX], h = pl->ah;
+    double *x = pl->ax, *y = pl->ay, u[HIL_PLANT_ARM_SUBMAX], h = pl->ah, w = 0.0;
     unsigned k, i, j;
+    for (j = 0; j < n; j++)
+        w += pl->vrow[j] * x[j];
     for (k = 0; k < m; k++) {
-        frac_real tf = 0;
-        const double *r = pl->vrow + (size_t)k * n;
-        double w = 0.0;
+        const double *r = pl->vrow + (size_t)(k + 1) * n, mid = tau0 + slope * ((double)k + 0.5) * h;
+        double wfree = slope * pl->vb1[k + 1] + pl->vb[0] * mid, tf;
         for (j = 0; j < n; j++)
-            w += r[j] * x[j];
+            wfree += r[j] * x[j];
         for (j = 0; j < k; j++)
-            w += pl->vb[k - 1 - j] * u[j];
-        frac_friction_eval(&pl->fric, (frac_real)w, &tf);
-        u[k] = tau0 + slope * ((double)k + 0.5) * h - (double)tf;
+            wfree += pl->vb[k - j] * u[j];
+        tf = step_friction(&pl->fric, w, wfree, pl->vb[0]);
+        u[k] = mid - tf;
+        w = wfree - pl->vb[0] * tf;
     }
     /* y = sum_j Am(:, j) x_j + sum_k Ad^(m-1-k) Bd u_k (inner loops over i
      * vectorize) */
     for (i = 0; i < n; i++)
-        y[i] = 0.0;
+        y[i] = slope * pl->bramp[i];
     for (j = 0; j < n; j++) {
         const double *a = pl->Am + (size_t)j * n, xj = x[j];
         for (i = 0; i < n; i++)
@@ -358,7 +408,8 @@ static void arm_half(struct hil_plant *pl, double tau0, double slope)
     }
     memcpy(x, y, n * sizeof *x);
     {
-        double o[4] = {0.0, 0.0, 0.0, 0.0}, acc = pl->acc_b * u[m - 1];
+        /* psi_L'' at the end of the half cycle: the torque there, less the last step's friction */
+        double o[4] = {0.0, 0.0, 0.0, 0.0}, acc = pl->acc_b * (u[m - 1] + 0.5 * slope * h);
         for (i = 0; i < 4; i++)
             for (j = 0; j < n; j++)
                 o[i] += pl->C[i * n + j] * x[j];

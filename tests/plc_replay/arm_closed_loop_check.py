@@ -2,7 +2,8 @@
 - the clean record rides ArmCtrl's torque limit LIMIT for >= 10 % of its samples;
 - its closed-loop replay against the noise floor: the held-out gap G = sqrt(sum_c w_c nrmse_c^2 / sum_c w_c) of
   gap-plc (w_c = 1 / floor_c^2, its noise floor per output from a stated gap.noise, else 1) and the noise-only value,
-  the same G between the record and the rig's run without gyro noise (same scenario, imu.gyro_noise = 0),
+  the same G between the record and the rig's run without gyro noise (same scenario, imu.gyro_noise = 0; with
+  gap.noise, the encoder's and the wire's stated step noise added in quadrature),
   held-out = the last 30 %: within 1.1 x (issue 21); with gap.noise, gap-plc's floor of imu_rate (white noise) within 1.5 x the rig's. The nominal holds the IMU's reading
   as the rig delivers it (gap.output_hold: one reading every h cycles, held); measured on arm_b G 0.00093
   against a noise-only 0.00094 (before the hold: 4.3 x, the LTI phase mean of the reading's ages);
@@ -42,17 +43,29 @@ for c in outs:
 # stated noise through the loop) against the rig's noise-only value, within a factor of 1.5 where the rig's
 # noise is white (imu_rate: the gyro's Gaussian noise). The encoder's and the wire's steps are stated as
 # white noise of the same rms, which the rig's deterministic truncation is not (near rest it hardly moves):
-# printed, not checked (Exp. D's motor angle 2.1 x, Exp. C's 4.2 x; docs/gap.md). The aggregate gap
+# printed, not checked (Exp. D's motor angle 2.1 x, Exp. C's 1.8 x; docs/gap.md). The aggregate gap
 # weights the outputs by 1 / floor^2 (docs/gap.md), and so does the noise-only value here.
+# The rig's noise-only value compares two records made with the same sensors, so a sensor's step (identical
+# in both where the loop does not move the arm with the gyro's noise) cancels; against a replay it does not.
+# For those outputs the stated step noise (nominal_run.json gap.noise, std about the true value) is added in
+# quadrature, relative to the output's std as nrmse is.
 WHITE = ("imu_rate",)
 w = [1.0] * len(outs)
 if "noise_floor_outputs" in rc:
     floor = rc["noise_floor_outputs"]
-    for c, v in zip(outs, nr):
+    stated = json.load(open(d + "/nominal_run.json"))["gap"]["noise"]
+    for i, c in enumerate(outs):
+        v = nr[i]
         print("  %-15s noise-only nrmse: rig %.4g, gap-plc's floor %.4g (ratio %.2f)%s"
               % (c, v, floor[c], floor[c] / v if v > 0 else float("inf"), "" if c in WHITE else ", a sensor's step: not checked"))
         if c in WHITE:
             assert v / 1.5 <= floor[c] <= 1.5 * v, "gap-plc's noise floor of %s is %.4g, the rig's noise-only %.4g" % (c, floor[c], v)
+        else:
+            y = clean[c]
+            m = sum(y) / n
+            sd = math.sqrt(sum((a - m) ** 2 for a in y) / n)
+            nr[i] = math.sqrt(v * v + (stated[c] / sd) ** 2)
+            print("  %-15s with its stated step noise %.4g: %.4g" % (c, stated[c], nr[i]))
     w = [1.0 / floor[c] ** 2 for c in outs]
 noise = math.sqrt(sum(wc * v * v for wc, v in zip(w, nr)) / sum(w))
 g = rc["gap_before_total"]

@@ -212,7 +212,6 @@ tables::ParamTable arm_plant_table(const ArmModelSpec& s, double h)
     one.D = Eigen::MatrixXd::Zero(4, 1);
     one.inputs = {c.inputs[0]};
     one.outputs = {"theta_M [rad]", "theta_M_dot [rad/s]", "psi_L [rad]", "psi_L_dot [rad/s]"};
-    const StateSpace d = design::c2d_zoh(one, h);
     tables::ParamTable t;
     t.name = "arm_plant";
     t.meta = {{"source", "seed 004 (3.103), full pseudo-spectral arm, fracdesign model arm --save-plant"},
@@ -220,12 +219,8 @@ tables::ParamTable arm_plant_table(const ArmModelSpec& s, double h)
     Eigen::MatrixXd dims(1, 2);
     dims << static_cast<double>(n), static_cast<double>(N);
     t.add("plant_dims", dims, "n states, N collocation points");
-    t.add("h", h, "step of Ad, Bd [s]");
-    t.add("Ad", d.A, "exact ZOH of Ac at h");
-    t.add("Bd", d.B, "exact ZOH of Bc at h; input net driven-side torque [N m]");
+    design::add_arm_plant_steps(t, one, h);
     t.add("C", C, "theta_M [rad], theta_M' [rad/s], psi_L [rad], psi_L' [rad/s]");
-    t.add("Ac", c.A, "continuous");
-    t.add("Bc", one.B, "continuous");
     t.validate();
     return t;
 }

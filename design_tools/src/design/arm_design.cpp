@@ -520,7 +520,6 @@ tables::ParamTable arm_plant_table_for(const ArmDocument& a, double h)
     one.D = Eigen::MatrixXd::Zero(4, 1);
     one.inputs = {c.inputs[0]};
     one.outputs = {"theta_M [rad]", "theta_M_dot [rad/s]", "psi(z_imu) [rad]", "psi_dot(z_imu) [rad/s]"};
-    const StateSpace d = c2d_zoh(one, h);
     tables::ParamTable t;
     t.name = "arm_plant";
     t.meta = {{"source", "arm document '" + a.name + "': full pseudo-spectral arm (3.103) with payload, fracdesign model --arm"},
@@ -528,14 +527,23 @@ tables::ParamTable arm_plant_table_for(const ArmDocument& a, double h)
     Eigen::MatrixXd dims(1, 3);
     dims << static_cast<double>(n), static_cast<double>(b.beam.N), static_cast<double>(n - 4 - 4 * b.beam.N);
     t.add("plant_dims", dims, "n states, N collocation points, payload states");
+    add_arm_plant_steps(t, one, h);
+    t.add("C", C, "theta_M [rad], theta_M' [rad/s], psi(z_imu) [rad], psi'(z_imu) [rad/s]");
+    t.validate();
+    return t;
+}
+
+void add_arm_plant_steps(tables::ParamTable& t, const StateSpace& one, double h)
+{
+    const StateSpace d = c2d_zoh(one, h);
+    const FohDiscretisation f = c2d_foh(one, h);
     t.add("h", h, "step of Ad, Bd [s]");
     t.add("Ad", d.A, "exact ZOH of Ac at h");
     t.add("Bd", d.B, "exact ZOH of Bc at h; input net driven-side torque [N m]");
-    t.add("C", C, "theta_M [rad], theta_M' [rad/s], psi(z_imu) [rad], psi'(z_imu) [rad/s]");
-    t.add("Ac", c.A, "continuous");
+    t.add("Bd1", Eigen::MatrixXd(0.5 * h * (f.B_now - f.B_prev)),
+          "exact response over h to the torque's ramp about its mid-step value, per unit slope [N m/s]");
+    t.add("Ac", one.A, "continuous");
     t.add("Bc", one.B, "continuous");
-    t.validate();
-    return t;
 }
 
 int arm_imu_reading_cycles(const ArmDocument& a) { return 2 * std::max(1, a.dout - 1); }

@@ -38,15 +38,26 @@
  *  - "arm": the flexible arm of the design models, seed 004 (3.103) (drive +
  *    pseudo-spectral Timoshenko beam, full order n = 4 + 4 N), read from the
  *    plant table `table` that `fracdesign model arm --full --save-plant`
- *    writes (docs/hil.md): x <- Ad x + Bd (tau - tau_f(theta_M')) per step h
- *    of the table (Ad, Bd: exact ZOH of the continuous arm at h), h dividing
- *    T/2 in at most HIL_PLANT_ARM_SUBMAX steps; tau is the shaft torque at
- *    the middle of the step (linear over the cycle as above), tau_f the
- *    motor friction by frac/friction.h at the velocity at the start of the
- *    step (explicit, first order in h; the friction's time constant
- *    I_M / (b0 k) = 13 ms at Table 8.6 is ~85 h). The steps of a half cycle
- *    are composed (Ad^k precomputed at init): one n x n product per half
- *    cycle, the velocities from the rows C_2 Ad^k.
+ *    writes (docs/hil.md): x <- Ad x + Bd (tau - tau_f(theta_M')) + Bd1 s
+ *    per step h of the table (Ad, Bd: exact ZOH of the continuous arm at h;
+ *    Bd1 = int_0^h e^{A (h - r)} B (r - h/2) dr, the exact response to the
+ *    torque's ramp of slope s about its mid-step value), h dividing T/2 in
+ *    at most HIL_PLANT_ARM_SUBMAX steps; tau is the shaft torque at the
+ *    middle of the step (linear over the cycle as above), so the drive's
+ *    torque is integrated exactly for any h (a table without Bd1, written
+ *    before it existed, holds the mid-step value: error O(h^2) in the
+ *    slope's part); tau_f the motor friction by frac/friction.h, held over
+ *    the step at the mean of the step's start and end velocities (the
+ *    trapezoidal rule, second order in h: the end velocity is
+ *    v_free - C_2 Bd tau_f, solved by fixed-point iteration, which
+ *    contracts by C_2 Bd |tau_f'| / 2 = 0.006 at Table 8.6's friction and
+ *    h = T/8; at most HIL_PLANT_FRICTION_ITER iterations, the explicit
+ *    value at the start velocity where they do not contract). The
+ *    friction's time constant I_M / (b0 k) = 13 ms at Table 8.6 is ~85 h;
+ *    the explicit rule (first order) left a motor-velocity error of ~3 x
+ *    the wire's step at h = T/8 on seed 004's arm. The steps of a half
+ *    cycle are composed (Ad^k precomputed at init): one n x n product per
+ *    half cycle, the velocities from the rows C_2 Ad^k.
  *    Outputs C x: theta_M, theta_M', tip angle psi_L, tip rate psi_L'; tip
  *    tangential acceleration L psi_L'' with psi_L'' = C_4 (Ac x + Bc u).
  *    backlash, the extra mode and Kelvin-Voigt damping are twomass effects:
@@ -62,6 +73,7 @@ enum hil_plant_model { HIL_PLANT_RIGID = 0, HIL_PLANT_TWOMASS = 1, HIL_PLANT_ARM
 #define HIL_PLANT_KV_MAX 1000 /* most Grunwald-Letnikov terms of the Kelvin-Voigt effect */
 #define HIL_PLANT_ARM_NMAX 128 /* most states of the arm plant (N <= 31) */
 #define HIL_PLANT_ARM_SUBMAX 32 /* most ZOH steps per half cycle (h >= T/64) */
+#define HIL_PLANT_FRICTION_ITER 8 /* most fixed-point iterations of the arm's trapezoidal friction per step */
 #define HIL_PLANT_TABLE_MAX (8u << 20) /* largest plant table file [bytes] */
 #define HIL_PLANT_PATH_MAX 256
 
@@ -100,9 +112,12 @@ struct hil_plant {
     double ah;                 /* ZOH step [s] */
     double Ad[HIL_PLANT_ARM_NMAX * HIL_PLANT_ARM_NMAX], Bd[HIL_PLANT_ARM_NMAX];
     double Am[HIL_PLANT_ARM_NMAX * HIL_PLANT_ARM_NMAX]; /* Ad^asub, column-major */
-    double vrow[HIL_PLANT_ARM_SUBMAX * HIL_PLANT_ARM_NMAX]; /* rows C_2 Ad^k, k < asub */
+    double vrow[(HIL_PLANT_ARM_SUBMAX + 1) * HIL_PLANT_ARM_NMAX]; /* rows C_2 Ad^k, k <= asub */
     double bcol[HIL_PLANT_ARM_SUBMAX * HIL_PLANT_ARM_NMAX]; /* columns Ad^k Bd, k < asub */
     double vb[HIL_PLANT_ARM_SUBMAX];                      /* C_2 Ad^k Bd */
+    double Bd1[HIL_PLANT_ARM_NMAX];  /* response over h to the torque's ramp about its mid-step value, per unit slope */
+    double bramp[HIL_PLANT_ARM_NMAX]; /* sum_{k < asub} Ad^k Bd1: the ramp's part of a half cycle */
+    double vb1[HIL_PLANT_ARM_SUBMAX + 1]; /* sum_{i < k} C_2 Ad^i Bd1 (k <= asub): its part of the velocity at step k */
     double C[4 * HIL_PLANT_ARM_NMAX];
     double acc_row[HIL_PLANT_ARM_NMAX], acc_b; /* psi_L'' = acc_row x + acc_b u (C_4 Ac, C_4 Bc) */
     double ax[HIL_PLANT_ARM_NMAX], ay[HIL_PLANT_ARM_NMAX]; /* state, scratch */

@@ -30,7 +30,7 @@ expect 1 "cannot write" model arm --N 9 --full --save-plant "$work/no/such/dir/x
 "$fd" model arm --N 9 --full --h 1e-4 --save-plant "$work/arm9.bin" > /dev/null || { echo "FAIL: --save-plant"; status=1; }
 "$fd" table check "$work/arm9.bin" > "$work/check" || { echo "FAIL: table check"; status=1; }
 cat "$work/check"
-for want in "plant_dims 1 x 2 40 9" "h 1 x 1 0.0001" "Ad 40 x 40" "Bd 40 x 1" "C 4 x 40" "Ac 40 x 40" "Bc 40 x 1"; do
+for want in "plant_dims 1 x 2 40 9" "h 1 x 1 0.0001" "Ad 40 x 40" "Bd 40 x 1" "Bd1 40 x 1" "C 4 x 40" "Ac 40 x 40" "Bc 40 x 1"; do
   set -- $want
   line=$(awk -v n="$1" '$1 == n' "$work/check" | tr -s ' ' | sed 's/^ //')
   case "$line" in

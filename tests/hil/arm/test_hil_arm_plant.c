@@ -272,6 +272,108 @@ static void test_constant_torque_accelerates_the_rigid_body_mode(void **state)
     assert_close(pl.psi, pl.theta, 0.02 * pl.theta);
 }
 
+/* Advances the plant one cycle with the torque ramped from tau0 to tau1. */
+static void ramp_cycle(struct hil_plant *q, double tau0, double tau1)
+{
+    struct hil_can_frame f;
+    struct hil_out out;
+    out.n = 0;
+    assert_int_equal(hil_co_rig_encode(&f, HIL_COB_RIG_TORQUE, tau0, tau1), HIL_OK);
+    assert_int_equal(hil_plant_on_frame(q, &f, &out), HIL_OK);
+}
+
+/* The drive's torque ramps over each cycle (first-order hold); with the
+ * table's Bd1 the plant integrates it exactly, so the response does not
+ * depend on the table's step: the undamped arm at h = T/8 (4 steps per half
+ * cycle) and at h = T/64 (32) agree to rounding under a torque that jumps
+ * every cycle (friction off). Without the ramp's column (the mid-step torque
+ * held, as a table without Bd1) they differ by the O(h^2) error of the
+ * coarse step, which the same comparison must see. */
+static void test_ramped_torque_is_integrated_exactly_at_any_step(void **state)
+{
+    static struct hil_plant fine;
+    struct hil_plant_params p, pf;
+    double prev = 0.0, err = 0.0, mag = 0.0, err_mid = 0.0;
+    unsigned k, pass;
+    (void)state;
+    arm_params(&p, HIL_ARM_TABLE_UNDAMPED);
+    arm_params(&pf, HIL_ARM_TABLE_UNDAMPED_FINE);
+    for (pass = 0; pass < 2; pass++) {
+        double *e = pass == 0 ? &err : &err_mid;
+        assert_int_equal(hil_plant_init(&pl, &p), HIL_OK);
+        assert_int_equal(hil_plant_init(&fine, &pf), HIL_OK);
+        assert_int_equal(pl.asub, 4);
+        assert_int_equal(fine.asub, 32);
+        if (pass == 1) { /* the coarse plant as a table without Bd1 */
+            memset(pl.bramp, 0, sizeof pl.bramp);
+            memset(pl.vb1, 0, sizeof pl.vb1);
+        }
+        prev = 0.0;
+        for (k = 0; k < 400; k++) {
+            /* a command full of jumps: a 40 Hz sine and a 7-cycle staircase */
+            const double tau = 20.0 * sin(2.0 * M_PI * 40.0 * k * p.T) + 6.0 * (double)(k % 7) - 18.0;
+            double d;
+            ramp_cycle(&pl, prev, tau);
+            ramp_cycle(&fine, prev, tau);
+            prev = tau;
+            d = fabs(pl.omega - fine.omega);
+            *e = d > *e ? d : *e;
+            if (pass == 0)
+                mag = fabs(fine.omega) > mag ? fabs(fine.omega) : mag;
+            d = fabs(pl.psi_d - fine.psi_d);
+            *e = d > *e ? d : *e;
+        }
+    }
+    print_message("ramped torque, h = T/8 against T/64: max |rate difference| %.3g rad/s with Bd1, %.3g with the "
+                  "mid-step torque held (max |theta_M'| %.3g rad/s)\n", err, err_mid, mag);
+    assert_true(mag > 0.01);
+    assert_true(err <= 1e-9 * mag);
+    assert_true(err_mid >= 1e3 * err);
+}
+
+/* The friction is held over each step at the mean of its start and end
+ * velocities (trapezoidal, hil/plant.h): second order in the table's step.
+ * The motor velocity under a ramped torque with Table 8.6's friction, at
+ * h = T/8 and T/16 against T/64: halving the step divides the error by
+ * (1/64 - 1/4096) / (1/256 - 1/4096) = 4.27 for a second-order rule and by
+ * 2.33 for a first-order one (the explicit rule it replaced). */
+static void test_friction_coupling_is_second_order_in_the_step(void **state)
+{
+    static struct hil_plant q[3];
+    const char *tables[3] = {HIL_ARM_TABLE_UNDAMPED, HIL_ARM_TABLE_UNDAMPED_HALF, HIL_ARM_TABLE_UNDAMPED_FINE};
+    double prev = 0.0, e8 = 0.0, e16 = 0.0, mag = 0.0, ratio;
+    unsigned k, i;
+    (void)state;
+    for (i = 0; i < 3; i++) {
+        struct hil_plant_params p;
+        arm_params(&p, tables[i]);
+        p.friction.b1 = 3.04; /* Table 8.6, model (5.2) */
+        p.friction.b0 = 7.684;
+        p.friction.k = 60.0;
+        assert_int_equal(hil_plant_init(&q[i], &p), HIL_OK);
+    }
+    assert_int_equal(q[1].asub, 8);
+    for (k = 0; k < 800; k++) {
+        /* slow reversals through rest (where tanh(60 v) is stiffest) and jumps */
+        const double tau = 30.0 * sin(2.0 * M_PI * 2.0 * k * 1.2e-3) + 4.0 * (double)(k % 5) - 8.0;
+        double d;
+        for (i = 0; i < 3; i++)
+            ramp_cycle(&q[i], prev, tau);
+        prev = tau;
+        d = fabs(q[0].omega - q[2].omega);
+        e8 = d > e8 ? d : e8;
+        d = fabs(q[1].omega - q[2].omega);
+        e16 = d > e16 ? d : e16;
+        mag = fabs(q[2].omega) > mag ? fabs(q[2].omega) : mag;
+    }
+    ratio = e8 / e16;
+    print_message("friction, max |theta_M' - theta_M'(T/64)|: %.3g rad/s at h = T/8, %.3g at T/16 (ratio %.2f; "
+                  "max |theta_M'| %.3g rad/s)\n", e8, e16, ratio, mag);
+    assert_true(mag > 0.05);
+    assert_true(e16 > 0.0);
+    assert_true(ratio > 3.5 && ratio < 5.0);
+}
+
 /* Each friction model of frac/friction.h acts on the motor: under a constant
  * torque (+-20 Nm, 1 s) the motor angle follows the rigid arm
  * I theta'' = tau - tau_f(theta') (integrated here with 10 us Euler steps)
@@ -354,6 +456,8 @@ int main(void)
         cmocka_unit_test(test_twomass_effects_and_missing_table_are_refused),
         cmocka_unit_test(test_free_response_is_the_tables_discrete_model),
         cmocka_unit_test(test_constant_torque_accelerates_the_rigid_body_mode),
+        cmocka_unit_test(test_ramped_torque_is_integrated_exactly_at_any_step),
+        cmocka_unit_test(test_friction_coupling_is_second_order_in_the_step),
         cmocka_unit_test(test_every_friction_model_brakes_the_motor),
         cmocka_unit_test(test_arm_closes_the_loop_on_the_lockstep_bench),
     };

@@ -173,6 +173,12 @@ ArmctrlForArm design_armctrl_for_arm(const ArmDocument& a, const Move& m, FfKind
 // psi(z_imu); psi'(z_imu)] with the checks of the seed arm's table (C_3 A = C_4, C_3 B = 0).
 tables::ParamTable arm_plant_table_for(const ArmDocument& a, double h);
 
+// The step entries of a HIL plant table (docs/hil.md) for the continuous single-input arm `one`
+// at step h: h; Ad, Bd, the exact ZOH (c2d_zoh, seed 004 (7.3)-(7.7)); Bd1 = int_0^h e^{A (h - r)} B
+// (r - h/2) dr, the exact response to the drive's torque ramp about its mid-step value per unit slope
+// (= (h/2) (B_now - B_prev) of c2d_foh), with which the rig integrates the ramp exactly; Ac, Bc.
+void add_arm_plant_steps(tables::ParamTable& t, const StateSpace& one, double h);
+
 // The HIL IMU's reading period for the document's d_o, in acquisitions (T/2 each): r = 2 max(1, d_o - 1),
 // a reading every r/2 cycles sent r/2 cycles after its sample (arm_hil_scenario's imu.reading_cycles).
 int arm_imu_reading_cycles(const ArmDocument& a);
