@@ -342,27 +342,29 @@ static void rk4(struct hil_plant *pl, double h, double tau0, double slope, unsig
 
 /* The friction held over a step whose velocity goes from v0 to
  * vfree - g tau_f (hil/plant.h): tau_f = F((v0 + vfree - g tau_f) / 2) by
- * fixed-point iteration from the explicit F(v0); the explicit value where
- * the iteration does not contract within HIL_PLANT_FRICTION_ITER steps. */
+ * fixed-point iteration from the explicit F(v0), to 1e-10 relative (it moves
+ * the velocity by g times that: ~1e-15 rad/s at Table 8.6); where it stops
+ * contracting (at the arithmetic's rounding, e.g. a float frac_real) the last
+ * iterate within 1e-5 relative, otherwise (diverging, or not settled within
+ * HIL_PLANT_FRICTION_ITER) the explicit value. */
 static double step_friction(frac_friction *fr, double v0, double vfree, double g)
 {
     frac_real t = 0;
-    double f0, f, last = 0.0;
+    double f0, f, d = 0.0, last = 0.0;
     unsigned it;
     frac_friction_eval(fr, (frac_real)v0, &t);
     f = f0 = (double)t;
     for (it = 0; it < HIL_PLANT_FRICTION_ITER; it++) {
-        double d;
         frac_friction_eval(fr, (frac_real)(0.5 * (v0 + vfree - g * f)), &t);
         d = fabs((double)t - f);
         f = (double)t;
-        if (d <= 1e-13 * (1.0 + fabs(f)))
+        if (d <= 1e-10 * (1.0 + fabs(f)))
             return f;
         if (it > 0 && d > 0.5 * last)
             break; /* not contracting */
         last = d;
     }
-    return f0;
+    return d <= 1e-5 * (1.0 + fabs(f)) ? f : f0;
 }
 
 /* Arm: the table's m = asub steps over [0, T/2] with torque

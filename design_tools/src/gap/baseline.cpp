@@ -1,6 +1,7 @@
 // baseline.cpp - the nominal model against the record: the inputs checked,
 // the fit / held-out split, the nominal replay and its residuals (see
 // stages.hpp, docs/gap.md).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdint>
@@ -8,6 +9,7 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "stages.hpp"
@@ -69,7 +71,8 @@ void check_nominal_replay(const NominalModel& model, const ReplayTrace& nom, con
 }
 
 // The residual the sensors' noise alone leaves in a closed loop, per compared
-// output (rms over rows [first, first + n) of setup's record, per draw): the
+// output (rms over each row range [first, first + n) of setup's record, per
+// draw; the ranges from the same draws, one replay per draw): the
 // controller reads each sensor's noise, so the plant moves with it (through
 // the loop's complementary sensitivity, and the limits when it rides them); a
 // record of the exact nominal differs from the noise-free replay by that
@@ -78,32 +81,42 @@ void check_nominal_replay(const NominalModel& model, const ReplayTrace& nom, con
 // before the reading's hold, as the sensor adds it), kLoopNoiseDraws draws
 // with fixed seeds, and compared with the noise-free replay `clean`. Open
 // loop this is the stated std itself (the noise does not feed back).
-Eigen::MatrixXd loop_noise_draws(const NominalModel& model, const ReplaySetup& setup, const ReplayTrace& clean,
-                                 Eigen::Index first, Eigen::Index n)
+using RowRange = std::pair<Eigen::Index, Eigen::Index>;  // first row, count
+
+std::vector<Eigen::MatrixXd> loop_noise_draws(const NominalModel& model, const ReplaySetup& setup, const ReplayTrace& clean,
+                                              const std::vector<RowRange>& ranges)
 {
-    const Eigen::Index rows = first + n, ny = model.C.rows();
+    Eigen::Index rows = 0;
+    for (const RowRange& r : ranges) rows = std::max(rows, r.first + r.second);
+    const Eigen::Index ny = model.C.rows();
     std::vector<double> sd(size_t(ny), 0.0);
     for (Eigen::Index i = 0; i < ny; ++i) {
         const auto it = model.noise.find(model.outputs[size_t(i)]);
         if (it != model.noise.end()) sd[size_t(i)] = it->second;
     }
     const Eigen::Index ncmp = Eigen::Index(setup.compared.size());
-    Eigen::MatrixXd out(kLoopNoiseDraws, ncmp), w(rows, ny);
+    std::vector<Eigen::MatrixXd> out(ranges.size(), Eigen::MatrixXd(kLoopNoiseDraws, ncmp));
+    Eigen::MatrixXd w(rows, ny);
     for (int d = 0; d < kLoopNoiseDraws; ++d) {
         std::mt19937_64 gen(0x6e6f697365ULL + std::uint64_t(d));  // fixed: the floor is a property of the record
         std::normal_distribution<double> g(0.0, 1.0);
         for (Eigen::Index i = 0; i < ny; ++i)
             for (Eigen::Index k = 0; k < rows; ++k) w(k, i) = sd[size_t(i)] * g(gen);
         const ReplayTrace tr = replay(setup, {}, rows, &w);
-        out.row(d) = ((tr.y.middleRows(first, n) - clean.y.middleRows(first, n)).colwise().squaredNorm() / double(n)).cwiseSqrt();
+        for (size_t r = 0; r < ranges.size(); ++r) {
+            const auto [first, n] = ranges[r];
+            out[r].row(d) =
+                ((tr.y.middleRows(first, n) - clean.y.middleRows(first, n)).colwise().squaredNorm() / double(n)).cwiseSqrt();
+        }
     }
-    for (Eigen::Index c = 0; c < ncmp; ++c) {
-        const double lim = 1e6 * std::max(sd[size_t(setup.compared[size_t(c)])], 1e-300);
-        if (!out.col(c).allFinite() || out.col(c).maxCoeff() > lim)
-            throw std::runtime_error("model gap.noise: the closed loop replayed with the stated sensor noise runs away (output '" +
-                                     model.outputs[size_t(setup.compared[size_t(c)])] +
-                                     "'): the noise floor cannot be computed; check the noise std against the loop's limits");
-    }
+    for (const Eigen::MatrixXd& o : out)
+        for (Eigen::Index c = 0; c < ncmp; ++c) {
+            const double lim = 1e6 * std::max(sd[size_t(setup.compared[size_t(c)])], 1e-300);
+            if (!o.col(c).allFinite() || o.col(c).maxCoeff() > lim)
+                throw std::runtime_error("model gap.noise: the closed loop replayed with the stated sensor noise runs away (output '" +
+                                         model.outputs[size_t(setup.compared[size_t(c)])] +
+                                         "'): the noise floor cannot be computed; check the noise std against the loop's limits");
+        }
     return out;
 }
 
@@ -183,9 +196,16 @@ Baseline baseline(const NominalModel& model, const Signals& data, const Signals*
     // over the fit rows (the fits' residual scale) and the evaluated rows.
     B.eval_noise_sd = noise_sd;
     if (!noise_sd.empty() && model.closed_loop) {
-        noise_sd = draws_rms(loop_noise_draws(model, B.fit_setup, nom, 0, R.fit_samples));
-        B.eval_noise_draws = validate ? loop_noise_draws(model, B.eval_setup_v, replay(B.eval_setup_v, {}), 0, R.eval_samples)
-                                      : loop_noise_draws(model, B.fit_setup, nom, R.eval_first, R.eval_samples);
+        // Without a validation record both row ranges come from the same draws of the whole record.
+        if (validate) {
+            noise_sd = draws_rms(loop_noise_draws(model, B.fit_setup, nom, {{0, R.fit_samples}})[0]);
+            B.eval_noise_draws = loop_noise_draws(model, B.eval_setup_v, replay(B.eval_setup_v, {}), {{0, R.eval_samples}})[0];
+        } else {
+            const std::vector<Eigen::MatrixXd> d =
+                loop_noise_draws(model, B.fit_setup, nom, {{0, R.fit_samples}, {R.eval_first, R.eval_samples}});
+            noise_sd = draws_rms(d[0]);
+            B.eval_noise_draws = d[1];
+        }
         B.eval_noise_sd = draws_rms(B.eval_noise_draws);
     }
     // Each coupling's scale (FitContext::Sq, set per site by which()).

@@ -51,8 +51,9 @@
  *    trapezoidal rule, second order in h: the end velocity is
  *    v_free - C_2 Bd tau_f, solved by fixed-point iteration, which
  *    contracts by C_2 Bd |tau_f'| / 2 = 0.006 at Table 8.6's friction and
- *    h = T/8; at most HIL_PLANT_FRICTION_ITER iterations, the explicit
- *    value at the start velocity where they do not contract). The
+ *    h = T/8; to 1e-10 relative in at most HIL_PLANT_FRICTION_ITER
+ *    iterations; the explicit value at the start velocity where they
+ *    diverge). The
  *    friction's time constant I_M / (b0 k) = 13 ms at Table 8.6 is ~85 h;
  *    the explicit rule (first order) left a motor-velocity error of ~3 x
  *    the wire's step at h = T/8 on seed 004's arm. The steps of a half
