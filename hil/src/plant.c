@@ -341,30 +341,25 @@ static void rk4(struct hil_plant *pl, double h, double tau0, double slope, unsig
 }
 
 /* The friction held over a step whose velocity goes from v0 to
- * vfree - g tau_f (hil/plant.h): tau_f = F((v0 + vfree - g tau_f) / 2) by
- * fixed-point iteration from the explicit F(v0), to 1e-10 relative (it moves
- * the velocity by g times that: ~1e-15 rad/s at Table 8.6); where it stops
- * contracting (at the arithmetic's rounding, e.g. a float frac_real) the last
- * iterate within 1e-5 relative, otherwise (diverging, or not settled within
- * HIL_PLANT_FRICTION_ITER) the explicit value. */
+ * vfree - g tau_f (hil/plant.h): tau_f = F((v0 + vfree - g tau_f) / 2), the
+ * trapezoidal rule, by two fixed-point corrections of the explicit F(v0).
+ * Each contracts the error by c = g |F'| / 2 (0.006 at Table 8.6 and
+ * h = T/8), so two leave c^2 of the explicit value's O(h) error: the rule
+ * stays second order (a velocity error ~1e-12 rad/s there). Where the second
+ * correction does not halve the first (c > 1/2: a friction too stiff for the
+ * step, where the explicit rule is at its own stability limit too) the
+ * explicit value. */
 static double step_friction(frac_friction *fr, double v0, double vfree, double g)
 {
     frac_real t = 0;
-    double f0, f, d = 0.0, last = 0.0;
-    unsigned it;
+    double f0, f1, f2;
     frac_friction_eval(fr, (frac_real)v0, &t);
-    f = f0 = (double)t;
-    for (it = 0; it < HIL_PLANT_FRICTION_ITER; it++) {
-        frac_friction_eval(fr, (frac_real)(0.5 * (v0 + vfree - g * f)), &t);
-        d = fabs((double)t - f);
-        f = (double)t;
-        if (d <= 1e-10 * (1.0 + fabs(f)))
-            return f;
-        if (it > 0 && d > 0.5 * last)
-            break; /* not contracting */
-        last = d;
-    }
-    return d <= 1e-5 * (1.0 + fabs(f)) ? f : f0;
+    f0 = (double)t;
+    frac_friction_eval(fr, (frac_real)(0.5 * (v0 + vfree - g * f0)), &t);
+    f1 = (double)t;
+    frac_friction_eval(fr, (frac_real)(0.5 * (v0 + vfree - g * f1)), &t);
+    f2 = (double)t;
+    return fabs(f2 - f1) <= 0.5 * fabs(f1 - f0) ? f2 : f0;
 }
 
 /* Arm: the table's m = asub steps over [0, T/2] with torque

@@ -49,11 +49,10 @@
  *    slope's part); tau_f the motor friction by frac/friction.h, held over
  *    the step at the mean of the step's start and end velocities (the
  *    trapezoidal rule, second order in h: the end velocity is
- *    v_free - C_2 Bd tau_f, solved by fixed-point iteration, which
- *    contracts by C_2 Bd |tau_f'| / 2 = 0.006 at Table 8.6's friction and
- *    h = T/8; to 1e-10 relative in at most HIL_PLANT_FRICTION_ITER
- *    iterations; the explicit value at the start velocity where they
- *    diverge). The
+ *    v_free - C_2 Bd tau_f, solved by two fixed-point corrections of the
+ *    explicit value, each contracting by C_2 Bd |tau_f'| / 2 = 0.006 at
+ *    Table 8.6's friction and h = T/8; the explicit value where the second
+ *    does not halve the first). The
  *    friction's time constant I_M / (b0 k) = 13 ms at Table 8.6 is ~85 h;
  *    the explicit rule (first order) left a motor-velocity error of ~3 x
  *    the wire's step at h = T/8 on seed 004's arm. The steps of a half
@@ -74,7 +73,6 @@ enum hil_plant_model { HIL_PLANT_RIGID = 0, HIL_PLANT_TWOMASS = 1, HIL_PLANT_ARM
 #define HIL_PLANT_KV_MAX 1000 /* most Grunwald-Letnikov terms of the Kelvin-Voigt effect */
 #define HIL_PLANT_ARM_NMAX 128 /* most states of the arm plant (N <= 31) */
 #define HIL_PLANT_ARM_SUBMAX 32 /* most ZOH steps per half cycle (h >= T/64) */
-#define HIL_PLANT_FRICTION_ITER 8 /* most fixed-point iterations of the arm's trapezoidal friction per step */
 #define HIL_PLANT_TABLE_MAX (8u << 20) /* largest plant table file [bytes] */
 #define HIL_PLANT_PATH_MAX 256
 
