@@ -85,6 +85,11 @@ TEST(GapCli, writes_result_json_and_report)
     EXPECT_EQ(j["schema"], "frac.gap");
     EXPECT_EQ(j["version"], 1);
     EXPECT_TRUE(j.contains("verdict") && j.contains("candidates") && j.contains("where"));
+    // The verdict's status is one of the documented five, with its sentence.
+    const std::string st = j["verdict"]["confidence"]["status"];
+    EXPECT_TRUE(st == "at_noise_floor" || st == "explained" || st == "partly_explained" || st == "unexplained" ||
+                st == "no_candidate") << st;
+    EXPECT_FALSE(j["verdict"]["confidence"]["explanation"].get<std::string>().empty());
     std::ifstream html(out / "report.html");
     std::stringstream ss;
     ss << html.rdbuf();
@@ -119,4 +124,40 @@ TEST(GapCli, refuses_a_malformed_coupling)
     m.replace(m.find("\"force_input\": \"u\""), 18,
               "\"force_input\": \"u\", \"coupling\": {\"twist\": [1, 0], \"torque\": [0, 1], \"stiffness\": 0}");
     expect_refused(csv("t,u,x,v", 300), "'stiffness' must be a finite number > 0", m);
+}
+
+TEST(GapCli, refuses_a_threads_count_that_is_not_a_whole_number)
+{
+    const fs::path d = workdir();
+    write(d / "model.json", kModel);
+    write(d / "data.csv", csv("t,u,x,v", 300));
+    for (const std::string bad : {"1.5", "-1", "1000"}) {
+        const fs::path out = d / ("threads_" + bad);
+        const Outcome r = run("--model " + (d / "model.json").string() + " --data " + (d / "data.csv").string() +
+                              " --threads " + bad + " --out " + out.string());
+        EXPECT_NE(r.status, 0) << bad;
+        EXPECT_NE(r.err.find("--threads"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find(bad), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(out)) << bad;
+    }
+}
+
+TEST(GapCli, one_worker_and_two_give_the_same_result_json)
+{
+    const fs::path d = workdir();
+    write(d / "model.json", kModel);
+    write(d / "data.csv", csv("t,u,x,v", 600));
+    nlohmann::json j[2];
+    for (int w = 1; w <= 2; ++w) {
+        const fs::path out = d / ("threads_ok_" + std::to_string(w));
+        const Outcome r = run("--model " + (d / "model.json").string() + " --data " + (d / "data.csv").string() +
+                              " --effects viscous_friction,gain_error,input_delay --threads " + std::to_string(w) +
+                              " --out " + out.string());
+        ASSERT_EQ(r.status, 0) << r.err;
+        std::ifstream in(out / "result.json");
+        j[w - 1] = nlohmann::json::parse(in);
+        j[w - 1].erase("seconds");
+        j[w - 1].erase("command");  // names the --threads given
+    }
+    EXPECT_EQ(j[0].dump(), j[1].dump());
 }

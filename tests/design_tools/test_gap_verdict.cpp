@@ -186,6 +186,59 @@ TEST(GapVerdict, a_clear_verdict_has_no_look_alike_and_a_margin)
     EXPECT_EQ(r.verdict.effects[0].kind, Effect::gain_error);
     EXPECT_TRUE(r.confidence.look_alikes.empty());
     EXPECT_GT(r.confidence.margin, 0.05);
+    // Without gap.noise: explained when the verdict removes >= kExplainedShrink.
+    EXPECT_GE(r.verdict.shrink, kExplainedShrink);
+    EXPECT_EQ(r.confidence.status, "explained");
+}
+
+namespace {
+
+// The lag's document stating the record's sensor noise (gap.noise): the
+// record()'s 0.3 % of the output's std, computed from the record itself.
+nlohmann::json lag_doc_with_noise(const Signals& s)
+{
+    const Eigen::VectorXd v = s.values.col(1);
+    const double sd = std::sqrt((v.array() - v.mean()).square().mean());
+    nlohmann::json d = lag_doc(kA);
+    d["gap"]["noise"] = {{"v", 0.003 * sd}};
+    return d;
+}
+
+}  // namespace
+
+TEST(GapVerdict, status_says_at_noise_floor_unexplained_partly_explained_and_no_candidate)
+{
+    // A clean record with the noise stated: at the floor, none.
+    {
+        const Signals s = record({});
+        const GapResult r = diagnose(nominal_from_json(lag_doc_with_noise(s), kTs), s, nullptr, few({Effect::gain_error}));
+        EXPECT_TRUE(r.verdict.effects.empty());
+        EXPECT_EQ(r.confidence.status, "at_noise_floor") << r.confidence.explanation;
+    }
+    // A delay no candidate can take (only saturation tried), the noise
+    // stated: none, but the gap is far above the floor: unexplained, with
+    // the ratio in the sentence. Without gap.noise: no_candidate.
+    {
+        const Signals s = record({{Effect::input_delay, {9 * kTs}}});
+        const GapResult r = diagnose(nominal_from_json(lag_doc_with_noise(s), kTs), s, nullptr, few({Effect::saturation}));
+        EXPECT_TRUE(r.verdict.effects.empty());
+        EXPECT_GT(r.gap_before_total, 10 * r.noise_floor_limit);
+        EXPECT_EQ(r.confidence.status, "unexplained") << r.confidence.explanation;
+        EXPECT_NE(r.confidence.explanation.find("noise floor"), std::string::npos);
+        const GapResult q = diagnose(nominal_from_json(lag_doc(kA), kTs), s, nullptr, few({Effect::saturation}));
+        EXPECT_TRUE(q.verdict.effects.empty());
+        EXPECT_EQ(q.confidence.status, "no_candidate") << q.confidence.explanation;
+        EXPECT_EQ(result_json(q)["verdict"]["confidence"]["status"], "no_candidate");
+    }
+    // A gain error and a delay, only the gain tried, the noise stated: the
+    // gain is found but leaves the delay's part above the floor.
+    {
+        const Signals s = record({{Effect::gain_error, {1.4}}, {Effect::input_delay, {6 * kTs}}});
+        const GapResult r = diagnose(nominal_from_json(lag_doc_with_noise(s), kTs), s, nullptr, few({Effect::gain_error}));
+        ASSERT_FALSE(r.verdict.effects.empty());
+        EXPECT_GT(r.verdict.gap, r.noise_floor_limit);
+        EXPECT_EQ(r.confidence.status, "partly_explained") << r.confidence.explanation;
+    }
 }
 
 TEST(GapVerdict, fracdesign_prints_its_version)

@@ -56,7 +56,7 @@ void write_atomically(const fs::path& dir, const std::vector<std::pair<std::stri
 int run_gap(const std::vector<std::string>& argv)
 {
     Args args(argv, {"json"});
-    args.check_known({"model", "data", "validate", "inputs", "outputs", "out", "json", "effects", "holdout"});
+    args.check_known({"model", "data", "validate", "inputs", "outputs", "out", "json", "effects", "holdout", "threads"});
     const std::string model_path = args.str("model"), data_path = args.str("data");
     const fs::path out = args.str("out", "gap_out");
     gap::GapOptions opt;
@@ -65,6 +65,12 @@ int run_gap(const std::vector<std::string>& argv)
     opt.holdout = args.num("holdout", 0.3);
     opt.progress = [](const std::string& line) { std::cerr << line << "\n"; };
     if (!(opt.holdout > 0 && opt.holdout < 1)) throw UsageError("--holdout must be in (0, 1)");
+    // --threads: workers for the independent candidate fits (GapOptions::threads;
+    // the result does not depend on it). 0, the default, is one per core.
+    const double threads = args.num("threads", 0);
+    if (!(threads >= 0 && threads <= 256 && threads == std::floor(threads)))
+        throw UsageError("--threads must be a whole number in 0..256 (0: one per core), got " + args.str("threads"));
+    opt.threads = int(threads);
     if (args.has("effects")) {
         opt.effects.clear();
         for (const std::string& e : split(args.str("effects"))) {
@@ -133,6 +139,7 @@ int run_gap(const std::vector<std::string>& argv)
         std::cout << "\n";
     }
     const auto& cf = vj["confidence"];
+    std::cout << "  status: " << cf["status"].get<std::string>() << ": " << cf["explanation"].get<std::string>() << "\n";
     if (!cf["runner_up"].get<std::string>().empty()) {
         std::snprintf(b, sizeof b, "  confidence: score margin %.3f to the runner-up %s\n",
                       cf["margin"].is_null() ? NAN : cf["margin"].get<double>(), cf["runner_up"].get<std::string>().c_str());
@@ -148,7 +155,7 @@ int run_gap(const std::vector<std::string>& argv)
 CommandRegistrar reg({"gap", "diagnose the sim-to-real gap: where, which unmodelled effect, how far it shrinks",
                       "usage: fracdesign gap --model nominal.json --data run.csv [--validate other.csv]\n"
                       "                      [--inputs u1,..] [--outputs y1,..] [--out DIR] [--json]\n"
-                      "                      [--effects e1,e2,..] [--holdout 0.3]\n\n"
+                      "                      [--effects e1,e2,..] [--holdout 0.3] [--threads N]\n\n"
                       "Replays the nominal model (a \"frac.model\" state space; closed loop when its\n"
                       "gap.closed_loop section gives the controller) on the recorded data, locates the\n"
                       "residual (output, frequency band, nominal modes, time windows with the\n"
@@ -156,7 +163,10 @@ CommandRegistrar reg({"gap", "diagnose the sim-to-real gap: where, which unmodel
                       "and ranks them by the held-out gap they remove (score = shrink - 0.005 per\n"
                       "fitted parameter), then adds effects by forward selection while the held-out\n"
                       "gap falls by >= 5 %. Without --validate the last --holdout fraction (30 %) of\n"
-                      "the record is held out and never fitted.\n\n"
+                      "the record is held out and never fitted. --threads N fits the independent\n"
+                      "candidates on N workers (default 0: one per core; the result does not\n"
+                      "depend on it). The verdict's status says whether the gap is at the stated\n"
+                      "noise floor, explained, partly explained or unexplained.\n\n"
                       "Effects: input_delay output_delay coulomb_friction viscous_friction\n"
                       "  stribeck_friction backlash deadzone saturation fractional_damping\n"
                       "  unmodelled_mode gain_error sensor_offset quantization mode_shift (and none).\n"

@@ -4,6 +4,7 @@
 // docs/gap.md).
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <utility>
 #include <vector>
@@ -67,6 +68,58 @@ GapResult::Confidence confidence_of(const std::vector<FitReport>& candidates, co
         }
     }
     return c;
+}
+
+// The verdict's status and its sentence (GapResult::Confidence::status):
+// whether the gap is the sensors' noise, explained by the verdict, only
+// partly explained, or not explained by any candidate. A `none` is only a
+// finding when the document states the noise it is compared with.
+void verdict_status(GapResult& R, double margin)
+{
+    GapResult::Confidence& c = R.confidence;
+    char b[512];
+    const bool noise = R.noise_floor > 0;
+    const double ratio = noise ? R.gap_before_total / R.noise_floor : 0.0;
+    if (R.verdict.effects.empty()) {
+        if (noise && R.gap_before_total <= R.noise_floor_limit) {
+            c.status = "at_noise_floor";
+            std::snprintf(b, sizeof b, "the held-out gap %.4g is within the stated sensor noise's limit %.4g (%.2f x the noise floor %.4g): nothing to find",
+                          R.gap_before_total, R.noise_floor_limit, ratio, R.noise_floor);
+        } else if (noise) {
+            c.status = "unexplained";
+            std::snprintf(b, sizeof b, "the held-out gap %.4g is %.3g x the stated noise floor %.4g, but no candidate's score (shrink less the parameter penalty) reaches %.3g: "
+                          "an effect outside the candidate list, or a wrong nominal (see where)",
+                          R.gap_before_total, ratio, R.noise_floor, margin);
+        } else {
+            c.status = "no_candidate";
+            std::snprintf(b, sizeof b, "no candidate's score (shrink of the held-out gap %.4g less the parameter penalty) reaches %.3g; "
+                          "without gap.noise the tool cannot tell the sensors' noise from an effect outside its list: "
+                          "state the sensors' noise std",
+                          R.gap_before_total, margin);
+        }
+        c.explanation = b;
+        return;
+    }
+    size_t unid = 0, params = 0;
+    for (const auto& e : R.verdict.unidentified)
+        for (const std::string& w : e) {
+            ++params;
+            if (!w.empty()) ++unid;
+        }
+    const bool explained = noise ? R.verdict.gap <= R.noise_floor_limit : R.verdict.shrink >= kExplainedShrink;
+    c.status = explained ? "explained" : "partly_explained";
+    if (noise)
+        std::snprintf(b, sizeof b, "the verdict leaves a held-out gap of %.4g, %.3g x the stated noise floor %.4g (limit %.4g)%s",
+                      R.verdict.gap, R.verdict.gap / R.noise_floor, R.noise_floor, R.noise_floor_limit,
+                      explained ? "" : ": part of the gap is not explained by any candidate");
+    else
+        std::snprintf(b, sizeof b, "the verdict removes %.1f %% of the held-out gap%s", 100 * R.verdict.shrink,
+                      explained ? "" : ": most of the gap is not explained by any candidate");
+    c.explanation = b;
+    if (unid > 0) {
+        std::snprintf(b, sizeof b, "; %zu of its %zu parameters are not identified by this record", unid, params);
+        c.explanation += b;
+    }
 }
 
 }  // namespace
@@ -172,6 +225,7 @@ void how_far(const std::vector<std::pair<FitReport, EffectSetup>>& singles, cons
     }
     added_mode_first(R.verdict);
     R.confidence = confidence_of(R.candidates, R.verdict, opt.margin);
+    verdict_status(R, opt.margin);
 }
 
 void report_traces(const Baseline& B, const Signals& data, GapResult& R)

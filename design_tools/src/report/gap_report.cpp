@@ -90,6 +90,8 @@ std::string gap_report_html(const gap::GapResult& r, const nlohmann::json& j, co
     }
     o << "</table>\n";
     const auto& cf = vj["confidence"];
+    o << "<p>Status <b>" << html_escape(cf["status"].get<std::string>()) << "</b>: " << html_escape(cf["explanation"].get<std::string>())
+      << ".</p>\n";
     if (!cf["runner_up"].get<std::string>().empty())
         o << "<p>Confidence: score margin " << g4(cf["margin"].is_null() ? NAN : cf["margin"].get<double>()) << " to the runner-up <b>"
           << html_escape(cf["runner_up"].get<std::string>()) << "</b>.</p>\n";

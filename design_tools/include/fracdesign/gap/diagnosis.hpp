@@ -91,6 +91,16 @@ struct GapResult {
         std::string first, runner_up;
         double margin = 0.0;  // score(first) - score(runner_up)
         std::vector<LookAlike> look_alikes;
+        // What the verdict says about the gap (how_far.cpp verdict_status):
+        // "at_noise_floor" (gap.noise stated and the gap within its limit:
+        // none), "explained" (the verdict leaves the gap within the noise
+        // floor's limit, or without gap.noise removes >= kExplainedShrink of
+        // it), "partly_explained" (an effect found, but more of the gap is
+        // left than that), "unexplained" (none, yet the gap is above the
+        // stated noise floor: no candidate accounts for it), "no_candidate"
+        // (none without gap.noise: the tool cannot tell noise from an effect
+        // outside its list); `explanation` says it in a sentence with figures.
+        std::string status, explanation;
     } confidence;
     // gap.noise: the aggregate gap the sensors' noise alone leaves (the
     // held-out nrmse of a perfect model; in a closed loop with the motion the
@@ -117,6 +127,10 @@ struct GapResult {
 // A gap within this factor of the noise floor (GapResult::noise_floor) is
 // `none`: what an effect could add is below sqrt(1.1^2 - 1) = 0.46 of the noise.
 constexpr double kNoiseFloorFactor = 1.1;
+
+// Without gap.noise a verdict that removes less than this share of the
+// held-out gap is "partly_explained" (GapResult::Confidence::status).
+constexpr double kExplainedShrink = 0.5;
 
 GapResult diagnose(const NominalModel& model, const Signals& data, const Signals* validate, const GapOptions& opt);
 
