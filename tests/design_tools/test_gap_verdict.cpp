@@ -34,10 +34,12 @@ nlohmann::json lag_doc(double a)
             {"gap", {{"velocity", "v"}, {"force_input", "u"}, {"units", {{"u", "V"}, {"v", "rad/s"}}}}}};
 }
 
-// The record: the nominal lag with `truth`, plus 0.3 % noise.
-Signals record(const std::vector<EffectInstance>& truth)
+// The record: the nominal lag with `truth`, plus 0.3 % noise; the command
+// a multisine on `offset`.
+Signals record(const std::vector<EffectInstance>& truth, double offset = 0.0)
 {
     Signals s = multisine_record({"u", "v"}, kTs, kN, {{1.0, 0.31, 0.0}, {0.6, 1.7, 1.0}, {0.4, 4.3, 2.0}});
+    s.values.col(0).array() += offset;
     const NominalModel m = nominal_from_json(lag_doc(kA), kTs);
     const ReplayTrace tr = replay(make_replay_setup(m, s, {}, {"v"}), truth);
     const double sd = std::sqrt((tr.y.col(0).array() - tr.y.col(0).mean()).square().mean());
@@ -273,4 +275,35 @@ TEST(GapVerdict, candidate_fits_give_the_same_result_on_one_and_on_two_threads)
     one.erase("seconds");
     two.erase("seconds");
     EXPECT_EQ(one.dump(), two.dump());
+}
+
+TEST(GapVerdict, flags_a_limit_edge_the_command_never_reaches)
+{
+    // The command is the multisine on an offset of 1 (its least value is
+    // derived below, about -0.9): a true upper limit of 0.6 of its largest
+    // value clips it, a true lower limit of 3 x its least value is never
+    // reached. The record identifies the upper edge only; the lower edge,
+    // whether fitted alone or mirrored by the symmetric fit, must be flagged.
+    const double off = 1.0;
+    const Signals probe = record({}, off);
+    const double umin = probe.values.col(0).minCoeff(), umax = probe.values.col(0).maxCoeff();
+    ASSERT_LT(umin, 0.0);
+    const double lower = 3 * umin, upper = 0.6 * umax;
+    // The symmetric fit's mirrored edge -upper lies below the command too, so
+    // it replays the record exactly with one parameter fewer and wins.
+    ASSERT_GT(upper, -umin);
+    const NominalModel m = nominal_from_json(lag_doc(kA), kTs);
+    const GapResult r = diagnose(m, record({{Effect::saturation, {lower, upper}}}, off), nullptr, few({Effect::saturation, Effect::gain_error}));
+    ASSERT_FALSE(r.verdict.effects.empty());
+    ASSERT_EQ(r.verdict.effects[0].kind, Effect::saturation);
+    EXPECT_NEAR(r.verdict.effects[0].params[1], upper, 0.02 * upper);
+    EXPECT_EQ(r.verdict.unidentified[0][1], "");
+    EXPECT_EQ(r.verdict.unidentified[0][0].rfind("never reached", 0), 0u) << r.verdict.unidentified[0][0];
+    // The fitted lower edge, if the fit put it inside the command's range,
+    // would clip the record: it lies below the command's least value.
+    EXPECT_LT(r.verdict.effects[0].params[0], umin + 0.02 * std::fabs(umin));
+    const nlohmann::json j = result_json(r);
+    EXPECT_TRUE(j["verdict"]["unidentified"].contains("lower"));
+    EXPECT_EQ(r.confidence.status, "explained");
+    EXPECT_NE(r.confidence.explanation.find("1 of its 2 parameters are not identified"), std::string::npos) << r.confidence.explanation;
 }

@@ -287,6 +287,43 @@ std::string unidentified_reason(double x, double sd, const ParamSpec& p)
     return "";
 }
 
+namespace {
+
+// A limit or dead-zone edge that the command entering them never reaches on
+// the fit rows (ReplayTrace::u_static of the fitted replay) is not identified
+// by the record: it only bounds the edge (e.g. a symmetric fit's mirrored
+// lower limit when the command never went that far down; a true lower limit
+// anywhere below the command's least value gives the same record).
+void flag_unreached_edges(const FitProblem& P, FitReport& r)
+{
+    bool have = false;
+    double lo = 0.0, hi = 0.0;
+    char b[200];
+    for (size_t i = 0; i < r.effects.size() && i < r.unidentified.size(); ++i) {
+        const EffectInstance& e = r.effects[i];
+        if ((e.kind != Effect::saturation && e.kind != Effect::deadzone) || e.params.size() < 2 || r.unidentified[i].size() < 2)
+            continue;
+        if (!have) {
+            const ReplayTrace tr = replay(*P.setup, r.effects, P.y.rows());
+            lo = tr.u_static.minCoeff();
+            hi = tr.u_static.maxCoeff();
+            have = true;
+        }
+        if (e.params[0] < lo && r.unidentified[i][0].empty()) {
+            std::snprintf(b, sizeof b, "never reached: the command's least value on the fit rows is %.4g, so the record says only lower < %.4g",
+                          lo, lo);
+            r.unidentified[i][0] = b;
+        }
+        if (e.params[1] > hi && r.unidentified[i][1].empty()) {
+            std::snprintf(b, sizeof b, "never reached: the command's largest value on the fit rows is %.4g, so the record says only upper > %.4g",
+                          hi, hi);
+            r.unidentified[i][1] = b;
+        }
+    }
+}
+
+}  // namespace
+
 FitReport make_report(const FitProblem& P, const FitOutcome& o, const Evaluator& E, double penalty)
 {
     FitReport r;
@@ -308,6 +345,7 @@ FitReport make_report(const FitProblem& P, const FitOutcome& o, const Evaluator&
         r.stddev.push_back(sd);
         r.unidentified.push_back(why);
     }
+    flag_unreached_edges(P, r);
     const Eigen::MatrixXd yhat = E.simulate(r.effects);
     r.gap_after = nrmse(E.y_eval, yhat, E.scale);
     r.gap = total_gap(r.gap_after, E.weight);

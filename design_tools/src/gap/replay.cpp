@@ -383,7 +383,9 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     tr.twist = Eigen::VectorXd::Zero(N);
     tr.twists = Eigen::MatrixXd::Zero(N, ncp);
     tr.u.resize(N);
+    tr.u_static = Eigen::VectorXd::Zero(N);
     tr.v.resize(N);
+    double static_in = 0.0;  // this step's command entering the static path (gain x the delayed command)
     std::vector<double> x(s.x0.data(), s.x0.data() + nx), xn(static_cast<size_t>(nx));
     std::unique_ptr<Controller> ctl = m.closed_loop ? s.controller0->clone() : nullptr;
     std::vector<double> ytrue(static_cast<size_t>(ny)), ysens(static_cast<size_t>(ny)), yraw(static_cast<size_t>(ny)),
@@ -447,6 +449,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
                 const double older = h_in.lagged(n + 2)[j], newer = h_in.lagged(n + 1)[j];
                 dfrac[size_t(j)] = j != fi ? older - newer : (bl >= 0 || series ? 0.0 : static_path(older) - static_path(newer));
             }
+        static_in = gain * up[size_t(fi)];
         double a = static_path(up[size_t(fi)]);
         if (bl >= 0) {
             bl_out = std::min(std::max(bl_out, a - 0.5 * bl), a + 0.5 * bl);
@@ -566,6 +569,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
             }
         }
         tr.u(k) = up[size_t(fi)] + (ffi != fi ? up[size_t(ffi)] : 0.0);  // the net force: the actuator's less the friction
+        tr.u_static(k) = static_in;
         tr.v(k) = v;
         {
             // x(k+1) = A x + B u (+ the series mode's correction): Eigen's

@@ -228,6 +228,7 @@ ReplaySetup make_replay_setup(const NominalModel& m, const Signals& data, const 
 struct ReplayTrace {
     Eigen::MatrixXd y;      // samples x compared outputs, as the sensors would read them
     Eigen::VectorXd u;      // plant force input after input effects and friction
+    Eigen::VectorXd u_static;  // the command entering the force input's limits and dead zone (gain x the delayed command)
     Eigen::VectorXd v;      // friction velocity (zero when the model names none)
     Eigen::VectorXd twist;  // the first coupling's deflection twist . x (zero when the model declares no coupling)
     Eigen::MatrixXd twists; // samples x couplings: each coupling's deflection
