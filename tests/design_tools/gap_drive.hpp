@@ -1,8 +1,11 @@
 // gap_drive.hpp - the synthetic records of the gap tests: a multisine on the
-// first column, the other columns zero (filled by each test's replay).
+// first column, the other columns zero (filled by each test's replay); random
+// levels held for random times (a drive or a reference for a truth of the
+// test's own).
 #pragma once
 
 #include <cmath>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -26,3 +29,24 @@ inline fracdesign::gap::Signals multisine_record(const std::vector<std::string>&
     }
     return s;
 }
+
+// n samples of levels uniform in [lo, hi], each held a uniform number of
+// samples in [hold_lo, hold_hi]; zero for the first `first` samples (seed fixed).
+inline std::vector<double> held_levels(long n, unsigned seed, double lo, double hi, int hold_lo, int hold_hi, int first)
+{
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> level(lo, hi);
+    std::uniform_int_distribution<int> hold(hold_lo, hold_hi);
+    std::vector<double> v(size_t(n), 0.0);
+    double u = 0;
+    int left = first;
+    for (long k = 0; k < n; ++k) {
+        if (--left <= 0) {
+            u = level(rng);
+            left = hold(rng);
+        }
+        v[size_t(k)] = u;
+    }
+    return v;
+}
+

@@ -24,6 +24,7 @@
 #include <cmath>
 #include <random>
 
+#include "gap_drive.hpp"
 #include "gap_sites.hpp"
 
 using namespace fracdesign::gap;
@@ -79,22 +80,15 @@ Signals record(const Axis& a, unsigned seed)
     Ac << 0, 1, -a.k / a.m, -a.c / a.m;
     Bc << 0, 1 / a.m;
     zoh(Ac, Bc, kTs, Ad, Bd);
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> level(-1, 1);
-    std::uniform_int_distribution<int> hold(200, 600);
+    const std::vector<double> ref = held_levels(kN, unsigned(seed), -1, 1, 200, 600, 100);
     Signals s;
     s.source = "in-loop offset truth";
     s.names = {"r", "u", "x", "v", "x_load"};
     s.Ts = kTs;
     s.values.resize(kN, 5);
     Eigen::Vector2d z = Eigen::Vector2d::Zero();
-    double r = 0;
-    int left = 100;
     for (Eigen::Index n = 0; n < kN; ++n) {
-        if (--left <= 0) {
-            r = level(rng);
-            left = hold(rng);
-        }
+        const double r = ref[size_t(n)];
         const double xm = z(0) + a.offset, vm = z(1);
         const double u = a.kp * (r - xm) - a.kd * vm;
         s.values.row(n) << r, u, xm, vm, z(0);

@@ -19,6 +19,7 @@
 #include "fracdesign/gap/diagnosis.hpp"
 #include "fracdesign/gap/effects.hpp"
 #include "fracdesign/gap/nominal.hpp"
+#include "gap_drive.hpp"
 
 using namespace fracdesign::gap;
 
@@ -54,27 +55,21 @@ Signals truth_record(double noise)
     Ac(3, 1) = w * w + 2 * kZeta * w * (-kB / kJ);
     Bc(3, 0) = 2 * kZeta * w * kKa / kJ;
     zoh(Ac, Bc, kTs, Ad, Bd);
-    std::mt19937 rng(5);
-    std::uniform_real_distribution<double> level(-5, 5);
-    std::uniform_int_distribution<int> hold(5, 40);
+    const std::vector<double> drive = held_levels(kN, 5, -5, 5, 5, 40, 10);
     Signals s;
     s.source = "sensor mount truth";
     s.names = {"voltage", "position", "velocity"};
     s.Ts = kTs;
     s.values.resize(kN, 3);
     Eigen::Vector4d z = Eigen::Vector4d::Zero();
-    double u = 0;
-    int left = 10;
     for (Eigen::Index k = 0; k < kN; ++k) {
-        if (--left <= 0) {
-            u = level(rng);
-            left = hold(rng);
-        }
+        const double u = drive[size_t(k)];
         s.values(k, 0) = u;
         s.values(k, 1) = z(0);
         s.values(k, 2) = z(2);
         z = Ad * z + Bd * u;
     }
+    std::mt19937 rng(6);
     std::normal_distribution<double> n(0.0, 1.0);
     for (Eigen::Index c = 1; c < 3; ++c) {
         const Eigen::VectorXd y = s.values.col(c);

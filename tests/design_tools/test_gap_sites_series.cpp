@@ -18,6 +18,7 @@
 
 #include "fracdesign/gap/effects.hpp"
 #include "fracdesign/gap/nominal.hpp"
+#include "gap_drive.hpp"
 
 using namespace fracdesign::gap;
 
@@ -63,22 +64,15 @@ Signals truth_record()
     Ac(3, 3) = -2 * kZeta * w;
     Bc(3, 0) = w * w;
     zoh(Ac, Bc, kTs, Ad, Bd);
-    std::mt19937 rng(7);
-    std::uniform_real_distribution<double> level(-5, 5);
-    std::uniform_int_distribution<int> hold(5, 40);
+    const std::vector<double> drive = held_levels(kN, 7, -5, 5, 5, 40, 10);
     Signals s;
     s.source = "series mode truth";
     s.names = {"voltage", "position", "velocity"};
     s.Ts = kTs;
     s.values.resize(kN, 3);
     Eigen::Vector4d z = Eigen::Vector4d::Zero();
-    double u = 0;
-    int left = 10;
     for (Eigen::Index k = 0; k < kN; ++k) {
-        if (--left <= 0) {
-            u = level(rng);
-            left = hold(rng);
-        }
+        const double u = drive[size_t(k)];
         s.values(k, 0) = u;
         s.values(k, 1) = z(0);
         s.values(k, 2) = z(1);
