@@ -50,3 +50,26 @@ inline std::vector<double> held_levels(long n, unsigned seed, double lo, double 
     return v;
 }
 
+// A record of a discrete linear system z(k+1) = Ad z(k) + Bd u(k) from rest
+// under the drive u: columns u, then the states `read` (one per name after
+// the first).
+inline fracdesign::gap::Signals state_record(const Eigen::MatrixXd& Ad, const Eigen::MatrixXd& Bd,
+                                             const std::vector<double>& drive, const std::vector<Eigen::Index>& read,
+                                             const std::vector<std::string>& names, double Ts, const std::string& source)
+{
+    fracdesign::gap::Signals s;
+    s.source = source;
+    s.names = names;
+    s.Ts = Ts;
+    const Eigen::Index n = Eigen::Index(drive.size());
+    s.values.resize(n, Eigen::Index(1 + read.size()));
+    Eigen::VectorXd z = Eigen::VectorXd::Zero(Ad.rows());
+    for (Eigen::Index k = 0; k < n; ++k) {
+        const double u = drive[size_t(k)];
+        s.values(k, 0) = u;
+        for (size_t j = 0; j < read.size(); ++j) s.values(k, Eigen::Index(j + 1)) = z(read[j]);
+        z = Ad * z + Bd.col(0) * u;
+    }
+    return s;
+}
+

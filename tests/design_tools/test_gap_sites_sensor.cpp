@@ -56,19 +56,7 @@ Signals truth_record(double noise)
     Bc(3, 0) = 2 * kZeta * w * kKa / kJ;
     zoh(Ac, Bc, kTs, Ad, Bd);
     const std::vector<double> drive = held_levels(kN, 5, -5, 5, 5, 40, 10);
-    Signals s;
-    s.source = "sensor mount truth";
-    s.names = {"voltage", "position", "velocity"};
-    s.Ts = kTs;
-    s.values.resize(kN, 3);
-    Eigen::Vector4d z = Eigen::Vector4d::Zero();
-    for (Eigen::Index k = 0; k < kN; ++k) {
-        const double u = drive[size_t(k)];
-        s.values(k, 0) = u;
-        s.values(k, 1) = z(0);
-        s.values(k, 2) = z(2);
-        z = Ad * z + Bd * u;
-    }
+    Signals s = state_record(Ad, Bd, drive, {0, 2}, {"voltage", "position", "velocity"}, kTs, "sensor mount truth");
     std::mt19937 rng(6);
     std::normal_distribution<double> n(0.0, 1.0);
     for (Eigen::Index c = 1; c < 3; ++c) {

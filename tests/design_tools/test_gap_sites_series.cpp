@@ -65,19 +65,7 @@ Signals truth_record()
     Bc(3, 0) = w * w;
     zoh(Ac, Bc, kTs, Ad, Bd);
     const std::vector<double> drive = held_levels(kN, 7, -5, 5, 5, 40, 10);
-    Signals s;
-    s.source = "series mode truth";
-    s.names = {"voltage", "position", "velocity"};
-    s.Ts = kTs;
-    s.values.resize(kN, 3);
-    Eigen::Vector4d z = Eigen::Vector4d::Zero();
-    for (Eigen::Index k = 0; k < kN; ++k) {
-        const double u = drive[size_t(k)];
-        s.values(k, 0) = u;
-        s.values(k, 1) = z(0);
-        s.values(k, 2) = z(1);
-        z = Ad * z + Bd * u;
-    }
+    Signals s = state_record(Ad, Bd, drive, {0, 1}, {"voltage", "position", "velocity"}, kTs, "series mode truth");
     return s;
 }
 
