@@ -307,3 +307,15 @@ TEST(GapVerdict, flags_a_limit_edge_the_command_never_reaches)
     EXPECT_EQ(r.confidence.status, "explained");
     EXPECT_NE(r.confidence.explanation.find("1 of its 2 parameters are not identified"), std::string::npos) << r.confidence.explanation;
 }
+
+TEST(GapVerdict, coulomb_and_stribeck_hold_the_same_term)
+{
+    // Forward selection (how_far.cpp) never adds one of these to a set
+    // holding the other: Stribeck contains Coulomb's Fc sgn(v).
+    EXPECT_TRUE(same_term(Effect::coulomb_friction, Effect::stribeck_friction));
+    EXPECT_TRUE(same_term(Effect::stribeck_friction, Effect::coulomb_friction));
+    EXPECT_FALSE(same_term(Effect::coulomb_friction, Effect::coulomb_friction));
+    EXPECT_FALSE(same_term(Effect::coulomb_friction, Effect::viscous_friction));
+    EXPECT_FALSE(same_term(Effect::stribeck_friction, Effect::viscous_friction));
+    EXPECT_FALSE(same_term(Effect::input_delay, Effect::output_delay));
+}

@@ -456,6 +456,12 @@ std::vector<std::string> param_names(Effect e, const std::vector<std::string>& o
     return v;
 }
 
+bool same_term(Effect a, Effect b)
+{
+    const auto friction = [](Effect e) { return e == Effect::coulomb_friction || e == Effect::stribeck_friction; };
+    return a != b && friction(a) && friction(b);
+}
+
 std::string site_name(Site s)
 {
     switch (s) {

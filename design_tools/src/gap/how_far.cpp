@@ -122,6 +122,15 @@ void verdict_status(GapResult& R, double margin)
     }
 }
 
+// Forward selection does not add an effect to a set holding one with the
+// same term (same_term, effects.hpp).
+bool overlaps(const std::vector<EffectSetup>& set, Effect e)
+{
+    for (const EffectSetup& s : set)
+        if (same_term(s.kind, e)) return true;
+    return false;
+}
+
 }  // namespace
 
 Evaluator held_out(const Baseline& B, const Signals& data, GapResult& R)
@@ -197,7 +206,7 @@ void how_far(const std::vector<std::pair<FitReport, EffectSetup>>& singles, cons
             FitProblem pick_prob;
             int tried = 0;
             for (size_t i = 0; i < singles.size() && tried < 3; ++i) {
-                if (used[i] || singles[i].first.score <= 0) continue;
+                if (used[i] || singles[i].first.score <= 0 || overlaps(cur.effects, singles[i].second.kind)) continue;
                 ++tried;
                 // The new effect starts from its single fit, the others from the current set.
                 FitProblem P = cur;

@@ -58,6 +58,11 @@ struct EffectInstance {
                                  // Site::mode: index into resonant_plant_modes();
                                  // Site::sensor: index into the compared outputs
 };
+// Two different effects that hold the same term: stribeck_friction contains
+// coulomb_friction (its Fc sgn(v) at Fs = Fc), so a set with both counts the
+// Coulomb level twice and the split between them is not identified. The
+// forward selection never adds one to a set holding the other.
+bool same_term(Effect a, Effect b);
 // The site's name in result.json: "force_input", "output", "coupling",
 // "mode" or "sensor".
 std::string site_name(Site s);
