@@ -46,7 +46,7 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
         // force input, the outputs, each declared coupling): each variant is
         // fitted, the one with the better score is the effect's candidate.
         std::vector<EffectSetup> variants;
-        for (const std::pair<Site, int>& site : effect_sites(e, model, B.outs.size())) {
+        for (const std::pair<Site, int>& site : effect_sites(e, model)) {
             if (site.first == Site::coupling) {
                 const Coupling& cp = model.couplings[size_t(site.second)];
                 if (!(coupling_Sq[size_t(site.second)] > 0)) {
@@ -66,11 +66,6 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
                 cc.mode_zeta = B.fit_setup.plant_modes[size_t(site.second)].zeta;
                 cc.coupling = site.second;
                 variants.push_back(descriptor(e).setup(cc, Site::mode));
-            } else if (site.first == Site::sensor) {
-                // The mode in one compared output's reading (its index in `coupling`).
-                FitContext cc = ctx;
-                cc.coupling = site.second;
-                variants.push_back(descriptor(e).setup(cc, Site::sensor));
             } else if (needs_velocity(e) && model.velocity < 0) {
                 R.skipped.push_back(effect_name(e) + (model.couplings.empty() ? "" : " at the force input") +
                                     ": the model names no velocity output (gap.velocity)");
