@@ -72,6 +72,10 @@ void per_model_output(const std::vector<double>& p, const std::vector<int>& comp
         out[size_t(compared[c])] = absolute ? std::fabs(p[first + c]) : p[first + c];
 }
 
+// What separates an input delay from an output delay (both descriptors' `reveals`).
+constexpr const char* kDelayReveals =
+    "a closed-loop record (an input delay moves the loop's dynamics, an output delay only the sensors' reading); in open loop an input delay and the same delay on every sensor are one response, and several outputs separate them only when the delay is in one sensor's reading";
+
 const std::vector<EffectDescriptor>& catalog();
 
 }  // namespace
@@ -87,7 +91,7 @@ const std::vector<EffectDescriptor>& catalog()
     static const std::vector<EffectDescriptor> v = {
         {Effect::input_delay, "input_delay", "u(t - d) at every plant input (d real: interpolated between samples)", false,
          {Site::force_input},
-         "a closed-loop record (an input delay moves the loop's dynamics, an output delay only the sensors' reading); in open loop an input delay and the same delay on every sensor are one response, and several outputs separate them only when the delay is in one sensor's reading",
+         kDelayReveals,
          [](const std::vector<std::string>&, const Units&, Site) { return std::vector<ParamInfo>{{"delay_s", "s"}}; },
          [](const FitContext& c, Site) {
              // The integer grid gives the starts, the solver refines the best three.
@@ -101,7 +105,7 @@ const std::vector<EffectDescriptor>& catalog()
              t.din = std::max(0.0, p[0] / replay_Ts(s));
          }},
         {Effect::output_delay, "output_delay", "y_c(t - d_c), one delay per compared output", false, {Site::force_input},
-         "a closed-loop record (an input delay moves the loop's dynamics, an output delay only the sensors' reading); in open loop an input delay and the same delay on every sensor are one response, and several outputs separate them only when the delay is in one sensor's reading",
+         kDelayReveals,
          [](const std::vector<std::string>& o, const Units&, Site) {
              return per_output("delay_s_", o, std::vector<std::string>(o.size(), "s"));
          },
