@@ -74,14 +74,16 @@ GapResult::Confidence confidence_of(const std::vector<FitReport>& candidates, co
 // whether the gap is the sensors' noise, explained by the verdict, only
 // partly explained, or not explained by any candidate. A `none` is only a
 // finding when the document states the noise it is compared with.
-void verdict_status(GapResult& R, double margin)
+// `at_noise_floor`: the stated noise's limit holds the nominal's held-out gap
+// (how_far decides it once, before the selection it skips).
+void verdict_status(GapResult& R, double margin, bool at_noise_floor)
 {
     GapResult::Confidence& c = R.confidence;
     char b[512];
     const bool noise = R.noise_floor > 0;
     const double ratio = noise ? R.gap_before_total / R.noise_floor : 0.0;
     if (R.verdict.effects.empty()) {
-        if (noise && R.gap_before_total <= R.noise_floor_limit) {
+        if (at_noise_floor) {
             c.status = "at_noise_floor";
             std::snprintf(b, sizeof b, "the held-out gap %.4g is within the stated sensor noise's limit %.4g (%.2f x the noise floor %.4g): nothing to find",
                           R.gap_before_total, R.noise_floor_limit, ratio, R.noise_floor);
@@ -234,7 +236,7 @@ void how_far(const std::vector<std::pair<FitReport, EffectSetup>>& singles, cons
     }
     added_mode_first(R.verdict);
     R.confidence = confidence_of(R.candidates, R.verdict, opt.margin);
-    verdict_status(R, opt.margin);
+    verdict_status(R, opt.margin, at_noise_floor);
 }
 
 void report_traces(const Baseline& B, const Signals& data, GapResult& R)
