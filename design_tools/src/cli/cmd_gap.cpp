@@ -172,7 +172,9 @@ CommandRegistrar reg({"gap", "diagnose the sim-to-real gap: where, which unmodel
                       "  unmodelled_mode gain_error sensor_offset quantization mode_shift (and none).\n"
                       "  With a gap.coupling section (a spring inside the plant, e.g. a gear), backlash\n"
                       "  and fractional_damping are also fitted in that spring; mode_shift is fitted at\n"
-                      "  each resonant mode of the plant; the best site is kept.\n\n"
+                      "  each resonant mode of the plant; unmodelled_mode in series at the force\n"
+                      "  input, at the outputs and in each compared sensor's reading (a sensor on a\n"
+                      "  compliant mount); the best site is kept.\n\n"
                       "Writes DIR/result.json (schema frac.gap v1) and DIR/report.html (default DIR:\n"
                       "gap_out); --json prints result.json. See docs/gap.md.\n",
                       run_gap});

@@ -281,19 +281,21 @@ const std::vector<EffectDescriptor>& catalog()
          }},
         {Effect::unmodelled_mode, "unmodelled_mode",
          "eta'' + 2 zeta w eta' + w^2 eta = w^2 u; in series at the force input (the plant is driven by eta, unit static "
-         "gain) or at the outputs (they see g_c eta'/w, a resonance without static gain)", false,
-         {Site::output, Site::force_input},
+         "gain) or at the outputs (they see g_c eta'/w, a resonance without static gain); or in one sensor's reading, the "
+         "sensor on a compliant mount: b'' + 2 zeta w b' + w^2 b = 2 zeta w y' + w^2 y, the sensor reads b "
+         "(transmissibility, unit static gain)", false,
+         {Site::output, Site::force_input, Site::sensor},
          "a frequency sweep over the band where the residual peaks, with a sensor at the actuator and one at the load",
          [](const std::vector<std::string>& o, const Units& u, Site site) {
              std::vector<ParamInfo> v = {{"f_hz", "Hz"}, {"zeta", "1"}};
-             if (site == Site::force_input) return v;
+             if (site == Site::force_input || site == Site::sensor) return v;
              std::vector<std::string> gu;
              for (size_t i = 0; i < o.size(); ++i) gu.push_back((i < u.y.size() ? u.y[i] : "[" + o[i] + "]") + "/(" + u.u + ")");
              for (const ParamInfo& g : per_output("gain_", o, gu)) v.push_back(g);
              return v;
          },
          [](const FitContext& c, Site site) {
-             EffectSetup s{Effect::unmodelled_mode, site, 0, {}, {}, true};
+             EffectSetup s{Effect::unmodelled_mode, site, site == Site::sensor ? c.coupling : 0, {}, {}, true};
              const size_t ny = site == Site::output ? c.Sy.size() : 0;
              const double flo = std::max(2.0 / c.fit_seconds, 1e-3), fhi = 0.25 / c.Ts;
              // zeta <= 0.5: a resonant mode, not an extra first-order lag.
@@ -321,6 +323,11 @@ const std::vector<EffectDescriptor>& catalog()
              t.zeta = p[1];
              if (site == Site::force_input) {
                  t.series_mode = true;
+             } else if (site == Site::sensor) {
+                 const std::vector<int>& cmp = replay_compared(s);
+                 if (t.coupling < 0 || size_t(t.coupling) >= cmp.size())
+                     throw std::logic_error("unmodelled_mode: no compared output " + std::to_string(t.coupling));
+                 t.sensor_mode = cmp[size_t(t.coupling)];
              } else {
                  t.mode = true;
                  per_model_output(p, replay_compared(s), 2, t.mode_gain, false);
@@ -466,6 +473,7 @@ std::string site_name(Site s)
     case Site::coupling: return "coupling";
     case Site::output: return "output";
     case Site::mode: return "mode";
+    case Site::sensor: return "sensor";
     }
     return "force_input";
 }
@@ -475,16 +483,19 @@ std::string site_phrase(const std::string& effect, const std::string& site, cons
     if (site == "coupling") return " (in the coupling '" + coupling + "')";
     if (site == "mode") return " (the nominal's " + coupling + ")";
     if (site == "output") return " (at the outputs)";
+    if (site == "sensor") return " (in the reading of sensor '" + coupling + "')";
     if (site == "force_input" && effect == "unmodelled_mode") return " (in series at the force input)";
     return "";
 }
 
-std::vector<std::pair<Site, int>> effect_sites(Effect e, const NominalModel& m)
+std::vector<std::pair<Site, int>> effect_sites(Effect e, const NominalModel& m, size_t compared_outputs)
 {
     std::vector<std::pair<Site, int>> v;
     for (Site s : descriptor(e).sites) {
         if (s == Site::coupling)
             for (size_t i = 0; i < m.couplings.size(); ++i) v.push_back({s, int(i)});
+        else if (s == Site::sensor)
+            for (size_t i = 0; i < compared_outputs; ++i) v.push_back({s, int(i)});
         else if (s == Site::mode)
             for (size_t i = 0, n = resonant_plant_modes(m).size(); i < n; ++i) v.push_back({s, int(i)});
         else

@@ -394,6 +394,33 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     std::vector<double> rk(m.closed_loop ? m.loop.references.size() : 0), ym(m.closed_loop ? m.loop.measured.size() : 0),
         cvec(static_cast<size_t>(nu));
     double eta[2] = {0, 0};
+    // The mount resonance in one sensor's reading (unmodelled_mode at
+    // Site::sensor): b'' + 2 zeta w b' + w^2 b = 2 zeta w y' + w^2 y, i.e.
+    // H(s) = (2 zeta w s + w^2) / (s^2 + 2 zeta w s + w^2) (base excitation's
+    // transmissibility, unit static gain, peak about 1/(2 zeta) at w),
+    // realised as z' = [[0, 1], [-w^2, -2 zeta w]] z + [0; 1] y, b = w^2 z1 +
+    // 2 zeta w z2. The true output is continuous, so it is held first order
+    // (linear between samples): z(k+1) = F z(k) + G0 y(k) + G1 (y(k+1) - y(k)),
+    // [F G0 G1] the top rows of exp([[Af, Bf, 0], [0, 0, 1/Ts], [0, 0, 0]] Ts).
+    // From rest at the first sample's value.
+    const int sensor_out = T.sensor_mode;
+    const double sm_w = 2 * M_PI * std::max(T.f_hz, 1e-6), sm_z = T.zeta;
+    Eigen::Matrix2d sm_F = Eigen::Matrix2d::Identity();
+    Eigen::Vector2d sm_G0 = Eigen::Vector2d::Zero(), sm_G1 = Eigen::Vector2d::Zero(), sm_x = Eigen::Vector2d::Zero();
+    double sm_prev = 0.0;
+    bool sm_first = true;
+    if (sensor_out >= 0) {
+        Eigen::MatrixXd M = Eigen::MatrixXd::Zero(4, 4), E, unused;
+        M(0, 1) = 1;
+        M(1, 0) = -sm_w * sm_w;
+        M(1, 1) = -2 * sm_z * sm_w;
+        M(1, 2) = 1;
+        M(2, 3) = 1 / Ts;
+        zoh(M, Eigen::MatrixXd::Zero(4, 1), Ts, E, unused);
+        sm_F = E.topLeftCorner(2, 2);
+        sm_G0 = E.block(0, 2, 2, 1);
+        sm_G1 = E.block(0, 3, 2, 1);
+    }
     double bl_out = 0.0, series_in = 0.0;
     bool first_sample = true;
     History h_out, h_in, h_ctl;
@@ -408,6 +435,16 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
         ym_true.noalias() = m.C * Eigen::Map<const Eigen::VectorXd>(x.data(), nx);
         if (with_d) ym_true.noalias() += m.D * Eigen::Map<const Eigen::VectorXd>(up.data(), nu);
         for (int i = 0; i < ny; ++i) ytrue[size_t(i)] += mode_gain[size_t(i)] * eta[1] / mode_w;
+        if (sensor_out >= 0) {
+            const double yk = ytrue[size_t(sensor_out)];
+            if (sm_first)
+                sm_x << yk / (sm_w * sm_w), 0.0;
+            else
+                sm_x = sm_F * sm_x + sm_G0 * sm_prev + sm_G1 * (yk - sm_prev);
+            sm_first = false;
+            sm_prev = yk;
+            ytrue[size_t(sensor_out)] = sm_w * sm_w * sm_x(0) + 2 * sm_z * sm_w * sm_x(1);
+        }
         for (const NominalModel::OutputHold& h : m.holds) ytrue[size_t(h.output)] = ytrue[size_t(h.sample)];
         if (h_out.len == 0) h_out.init(ny, dout_max + 2, ytrue.data());
         h_out.push(ytrue.data());

@@ -64,7 +64,7 @@ nlohmann::json bj = nlohmann::json::array();
 std::string site_subject(const GapResult& R, Site site, int index)
 {
     const std::vector<std::string>* names =
-        site == Site::coupling ? &R.coupling_names : site == Site::mode ? &R.mode_names : nullptr;
+        site == Site::coupling ? &R.coupling_names : site == Site::mode ? &R.mode_names : site == Site::sensor ? &R.outputs : nullptr;
     return names && index >= 0 && size_t(index) < names->size() ? (*names)[size_t(index)] : "";
 }
 

@@ -39,14 +39,14 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
         size_t effect;
         EffectSetup setup;
     };
-    std::vector<Job> jobs;
+    std::vector<Job> jobs, sensor_variants;
     for (size_t ie = 0; ie < opt.effects.size(); ++ie) {
         const Effect e = opt.effects[ie];
         // The effect at each of its sites on this model (effect_sites: the
         // force input, the outputs, each declared coupling): each variant is
         // fitted, the one with the better score is the effect's candidate.
         std::vector<EffectSetup> variants;
-        for (const std::pair<Site, int>& site : effect_sites(e, model)) {
+        for (const std::pair<Site, int>& site : effect_sites(e, model, B.outs.size())) {
             if (site.first == Site::coupling) {
                 const Coupling& cp = model.couplings[size_t(site.second)];
                 if (!(coupling_Sq[size_t(site.second)] > 0)) {
@@ -66,6 +66,13 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
                 cc.mode_zeta = B.fit_setup.plant_modes[size_t(site.second)].zeta;
                 cc.coupling = site.second;
                 variants.push_back(descriptor(e).setup(cc, Site::mode));
+            } else if (site.first == Site::sensor) {
+                // The mode in one compared output's reading (its index in
+                // `coupling`): fitted after the first pass, and only where a
+                // mode at another site found a resonance (below).
+                FitContext cc = ctx;
+                cc.coupling = site.second;
+                sensor_variants.push_back({ie, descriptor(e).setup(cc, Site::sensor)});
             } else if (needs_velocity(e) && model.velocity < 0) {
                 R.skipped.push_back(effect_name(e) + (model.couplings.empty() ? "" : " at the force input") +
                                     ": the model names no velocity output (gap.velocity)");
@@ -165,6 +172,53 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
                 job_report[i] = make_report(P, c, E, opt.param_penalty);
             }
         });
+    // The mode in a sensor's reading (unmodelled_mode at Site::sensor, one
+    // variant per compared output) is a resonance the other resonant
+    // candidates also see, placed differently: the mode at the outputs or in
+    // series, or a nominal mode moved (mode_shift), each lowers part of the
+    // gap a mount resonance leaves. Where none of them lowers the held-out gap
+    // by the selection margin, the record holds no resonance to place and the
+    // sensor variants are not fitted (they would cost one replay per start and
+    // output and find nothing). Otherwise each is fitted from those
+    // candidates' fitted frequency and damping (f_hz, zeta: the first two
+    // parameters of both effects) and from the residual's peaks, without the
+    // log grid and without the continuation: the resonance is already located.
+    {
+        std::vector<std::vector<double>> found;  // physical (f_hz, zeta) of the resonant candidates that found one
+        for (size_t i = 0; i < jobs.size(); ++i) {
+            const EffectSetup& js = jobs[i].setup;
+            if (!((js.kind == Effect::unmodelled_mode && js.site != Site::sensor) || js.kind == Effect::mode_shift) ||
+                !(job_report[i].shrink >= opt.margin) || outcome[i].theta.size() < 2 || js.spec.size() < 2)
+                continue;
+            found.push_back({js.spec[0].scale * outcome[i].theta[0], js.spec[1].scale * outcome[i].theta[1]});
+        }
+        std::vector<size_t> todo;
+        if (!found.empty())
+            for (Job j : sensor_variants) {
+                // Starts in the variant's normalized units (ParamSpec::scale), inside its bounds.
+                const ParamSpec &sf = j.setup.spec[0], &sz = j.setup.spec[1];
+                const auto clamp = [](double v, const ParamSpec& p) { return std::min(p.hi, std::max(p.lo, v / p.scale)); };
+                std::vector<std::vector<double>> st;
+                for (const std::vector<double>& fz : found) st.push_back({clamp(fz[0], sf), clamp(fz[1], sz)});
+                for (double f : ctx.residual_peaks_hz)
+                    if (f / sf.scale >= sf.lo && f / sf.scale <= sf.hi) st.push_back({f / sf.scale, clamp(0.05, sz)});
+                j.setup.starts = st;
+                todo.push_back(jobs.size());
+                jobs.push_back(j);
+            }
+        else if (!sensor_variants.empty())
+            R.skipped.push_back("unmodelled_mode in a sensor's reading: no mode at the outputs or in series and no "
+                                "mode_shift lowers the held-out gap by the margin, so there is no resonance to place");
+        outcome.resize(jobs.size());
+        job_report.resize(jobs.size());
+        if (!todo.empty())
+            run_pool(todo, "fitted", [&](size_t i) {
+                FitProblem P = base_problem;
+                P.effects = {jobs[i].setup};
+                outcome[i] = fit_set(P, {}, opt.max_iterations);
+                job_report[i] = make_report(P, outcome[i], E, opt.param_penalty);
+            });
+    }
     // A Stribeck fit whose curve does not fall (Fs <= Fc: the replay reads
     // it as Fs = Fc, effects.cpp) is a Coulomb friction without offset. When
     // it fits better than the Coulomb candidate at the same site, that fit

@@ -44,29 +44,34 @@ Effect effect_from_name(const std::string& name);  // std::invalid_argument if u
 // the model declares them (gap.coupling), in one of its springs or flexible
 // modes: a play in the deflection, c D^alpha of the deflection in parallel
 // with the spring (Kelvin-Voigt). The unmodelled mode acts in series at the
-// force input (between the actuator and the plant) or at the outputs (a
-// sensor-side resonance). The mode shift acts on one resonant mode of the
+// force input (between the actuator and the plant), at the outputs (a
+// force-driven resonance the sensors see), or in one sensor's reading (the
+// sensor on a compliant mount: its reading is the mount's transmissibility
+// of the true output). The mode shift acts on one resonant mode of the
 // nominal plant (mode_shift.hpp), one site per mode.
-enum class Site { force_input, coupling, output, mode };
+enum class Site { force_input, coupling, output, mode, sensor };
 struct EffectInstance {
     Effect kind;
     std::vector<double> params;  // physical values, in the order of param_names()
     Site site = Site::force_input;
     int coupling = 0;            // Site::coupling: index into NominalModel::couplings;
-                                 // Site::mode: index into resonant_plant_modes()
+                                 // Site::mode: index into resonant_plant_modes();
+                                 // Site::sensor: index into the compared outputs
 };
 // Two different effects that hold the same term: stribeck_friction contains
 // coulomb_friction (its Fc sgn(v) at Fs = Fc), so a set with both counts the
 // Coulomb level twice and the split between them is not identified. The
 // forward selection never adds one to a set holding the other.
 bool same_term(Effect a, Effect b);
-// The site's name in result.json: "force_input", "output", "coupling" or "mode".
+// The site's name in result.json: "force_input", "output", "coupling",
+// "mode" or "sensor".
 std::string site_name(Site s);
 // How the CLI and the report say where an effect of result.json acts
 // (effect name, site name, coupling name): "" at the force input, else
 // e.g. " (in the coupling 'gear')", " (at the outputs)", " (in series at
 // the force input)" for the mode, " (the nominal's mode at 12.3 Hz, zeta
-// 0.02)" for a mode shift (result.json's coupling field names the mode).
+// 0.02)" for a mode shift (result.json's coupling field names the mode),
+// " (in the reading of sensor 'tip_rate')" for the mode at a sensor.
 std::string site_phrase(const std::string& effect, const std::string& site, const std::string& coupling);
 
 // The parameters' units come from the model document's optional gap.units
@@ -150,6 +155,7 @@ struct ReplayTerms {
     double cfc = 0, calpha = 0.5;
     bool mode = false;                // the mode at the outputs
     bool series_mode = false;         // the mode in series at the force input
+    int sensor_mode = -1;             // model output whose reading passes through the mount resonance (-1: none)
     double f_hz = 1, zeta = 0.1;
     std::vector<double> mode_gain, offset, step;              // per model output
     Eigen::MatrixXd A, B;             // the plant with a nominal mode moved (mode_shift; empty: the nominal's)
@@ -190,8 +196,8 @@ bool coupling_capable(Effect e);
 // Parameter names of an effect at a site; `outputs` are the compared outputs (per-channel parameters).
 std::vector<std::string> param_names(Effect e, const std::vector<std::string>& outputs, Site site = Site::force_input);
 // The sites the diagnosis tries for an effect on this model (coupling: once per declared coupling;
-// mode: once per resonant plant mode, resonant_plant_modes).
-std::vector<std::pair<Site, int>> effect_sites(Effect e, const NominalModel& m);
+// mode: once per resonant plant mode, resonant_plant_modes; sensor: once per compared output).
+std::vector<std::pair<Site, int>> effect_sites(Effect e, const NominalModel& m, size_t compared_outputs);
 // `u` with the deflection unit of coupling `coupling`.
 Units units_at(const Units& u, int coupling);
 // Units of the model's signals as the replay's parameters see them.
