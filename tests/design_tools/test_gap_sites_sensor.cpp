@@ -132,3 +132,43 @@ TEST(GapSitesSensor, the_diagnosis_names_the_mode_in_the_tachometer_reading)
     EXPECT_EQ(j["verdict"]["params_unit"]["f_hz"], "Hz");
     EXPECT_EQ(site_phrase("unmodelled_mode", "sensor", "velocity"), " (in the reading of sensor 'velocity')");
 }
+
+// The gate: on a record with no resonance to place (the axis with a viscous
+// friction the nominal lacks, b' = 1.6 b), no mode at another site lowers the
+// held-out gap by the margin, so the sensor variants are not fitted and
+// `skipped` says why; the verdict is the friction.
+TEST(GapSitesSensor, a_record_without_a_resonance_skips_the_sensor_site)
+{
+    Signals data = truth_record(0.0);
+    // The truth without the mount, with viscous friction 1.6 b: re-simulated
+    // from the recorded input by the exact zero-order hold.
+    const double b2 = 1.6 * kB;
+    Eigen::MatrixXd Ac(2, 2), Bc(2, 1), Ad, Bd;
+    Ac << 0, 1, 0, -b2 / kJ;
+    Bc << 0, kKa / kJ;
+    zoh(Ac, Bc, kTs, Ad, Bd);
+    Eigen::Vector2d z = Eigen::Vector2d::Zero();
+    for (Eigen::Index k = 0; k < kN; ++k) {
+        data.values(k, 1) = z(0);
+        data.values(k, 2) = z(1);
+        z = Ad * z + Bd * data.values(k, 0);
+    }
+    std::mt19937 rng(9);
+    std::normal_distribution<double> n(0.0, 1.0);
+    for (Eigen::Index c = 1; c < 3; ++c) {
+        const Eigen::VectorXd y = data.values.col(c);
+        const double sd = std::sqrt((y.array() - y.mean()).square().mean());
+        for (Eigen::Index k = 0; k < kN; ++k) data.values(k, c) += 0.002 * sd * n(rng);
+    }
+    const NominalModel m = nominal_from_json(axis_doc(), kTs);
+    GapOptions o;
+    o.effects = {Effect::unmodelled_mode, Effect::viscous_friction, Effect::gain_error};
+    const GapResult r = diagnose(m, data, nullptr, o);
+    ASSERT_FALSE(r.verdict.effects.empty());
+    EXPECT_EQ(r.verdict.effects[0].kind, Effect::viscous_friction);
+    bool said = false;
+    for (const std::string& s : r.skipped) said = said || s.find("in a sensor's reading") != std::string::npos;
+    EXPECT_TRUE(said);
+    for (const FitReport& c : r.candidates)
+        for (const EffectInstance& e : c.effects) EXPECT_NE(e.site, Site::sensor) << effect_name(e.kind);
+}
