@@ -1,10 +1,10 @@
 // test_gap_sites_sensor.cpp - the unmodelled mode in one sensor's reading
-// (issue 17 item 3, "a mode at the sensor"): a tachometer on a compliant
-// mount reads the mount's motion b, b'' + 2 zeta w b' + w^2 b = 2 zeta w v'
-// + w^2 v (base excitation), not the axis velocity v. The replay's mount
-// (first-order hold of the true output, replay.cpp) matches an exact joint
-// simulation, and the diagnosis names the mode at that sensor with its
-// frequency and damping.
+// (issue 17 item 3, "a mode at the sensor"): a second-order tachometer reads
+// b, b'' + 2 zeta w b' + w^2 b = m 2 zeta w v' + w^2 v, not the axis
+// velocity v: on a compliant mount (m = 1, base excitation) or by its own
+// low-pass (m = 0). The replay's sensor mode (first-order hold of the true
+// output, replay.cpp) matches an exact joint simulation, and the diagnosis
+// names the mode at that sensor with its frequency, damping and zero share.
 //
 // Plant (chosen here, not a seed's): a rigid axis J theta'' = Ka u - b theta'
 // (J = 1.3e-3 kg m^2, b = 1.7e-3 Nm s/rad, Ka = 0.11 Nm/V) at 1 ms, open
@@ -37,22 +37,23 @@ nlohmann::json axis_doc()
                      {"units", {{"voltage", "V"}, {"position", "rad"}, {"velocity", "rad/s"}}}}}};
 }
 
-// The record: u held per sample; position, and the mounted tachometer's b
-// (plus `noise` x each output's std of white noise, seed fixed).
-Signals truth_record(double noise)
+// The record: u held per sample; position, and the tachometer's b at f Hz,
+// damping zeta, zero share m (plus `noise` x each output's std of white
+// noise, seed fixed).
+Signals truth_record(double noise, double f = kF, double zeta = kZeta, double m = 1.0)
 {
-    const double w = 2 * M_PI * kF;
+    const double w = 2 * M_PI * f;
     // State [theta, v, b, b']: v' = -kB/kJ v + kKa/kJ u;
-    // b'' = -w^2 b - 2 zeta w b' + w^2 v + 2 zeta w v'.
+    // b'' = -w^2 b - 2 zeta w b' + w^2 v + m 2 zeta w v'.
     Eigen::MatrixXd Ac = Eigen::MatrixXd::Zero(4, 4), Bc = Eigen::MatrixXd::Zero(4, 1), Ad, Bd;
     Ac(0, 1) = 1;
     Ac(1, 1) = -kB / kJ;
     Bc(1, 0) = kKa / kJ;
     Ac(2, 3) = 1;
     Ac(3, 2) = -w * w;
-    Ac(3, 3) = -2 * kZeta * w;
-    Ac(3, 1) = w * w + 2 * kZeta * w * (-kB / kJ);
-    Bc(3, 0) = 2 * kZeta * w * kKa / kJ;
+    Ac(3, 3) = -2 * zeta * w;
+    Ac(3, 1) = w * w + m * 2 * zeta * w * (-kB / kJ);
+    Bc(3, 0) = m * 2 * zeta * w * kKa / kJ;
     zoh(Ac, Bc, kTs, Ad, Bd);
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> level(-5, 5);
@@ -98,7 +99,7 @@ TEST(GapSitesSensor, the_mount_replays_the_exact_joint_simulation)
     const NominalModel m = nominal_from_json(axis_doc(), kTs);
     const ReplaySetup s = make_replay_setup(m, data, {}, {"position", "velocity"});
     // Site index 1: the second compared output, the velocity.
-    const ReplayTrace t = replay(s, {{Effect::unmodelled_mode, {kF, kZeta}, Site::sensor, 1}});
+    const ReplayTrace t = replay(s, {{Effect::unmodelled_mode, {kF, kZeta, 1.0}, Site::sensor, 1}});
     // The position is untouched (to rounding); the velocity's reading follows
     // the exact mount to the first-order hold's error (measured 2.8e-6 of
     // the std here), against the mount-free replay's 0.11.
@@ -108,6 +109,12 @@ TEST(GapSitesSensor, the_mount_replays_the_exact_joint_simulation)
     const double without = rms_over_std(bare.y.col(1), data.values.col(2));
     EXPECT_LT(with, 1e-4);
     EXPECT_GT(without, 100 * with) << with << " " << without;
+    // The sensor's own low-pass (m = 0), well damped: likewise.
+    const Signals lp = truth_record(0.0, 25.0, 0.4, 0.0);
+    const ReplaySetup s0 = make_replay_setup(m, lp, {}, {"position", "velocity"});
+    const ReplayTrace t0 = replay(s0, {{Effect::unmodelled_mode, {25.0, 0.4, 0.0}, Site::sensor, 1}});
+    EXPECT_LT(rms_over_std(t0.y.col(1), lp.values.col(2)), 1e-4);
+    EXPECT_GT(rms_over_std(replay(s0, {}).y.col(1), lp.values.col(2)), 0.01);
 }
 
 TEST(GapSitesSensor, the_diagnosis_names_the_mode_in_the_tachometer_reading)
@@ -125,12 +132,37 @@ TEST(GapSitesSensor, the_diagnosis_names_the_mode_in_the_tachometer_reading)
     EXPECT_EQ(e.coupling, 1);
     EXPECT_NEAR(e.params[0], kF, 0.02 * kF);
     EXPECT_NEAR(e.params[1], kZeta, 0.1 * kZeta);
+    EXPECT_NEAR(e.params[2], 1.0, 0.1);
     EXPECT_GE(r.verdict.shrink, 0.8);
     const nlohmann::json j = result_json(r);
     EXPECT_EQ(j["verdict"]["sites"][0], "sensor");
     EXPECT_EQ(j["verdict"]["couplings"][0], "velocity");
     EXPECT_EQ(j["verdict"]["params_unit"]["f_hz"], "Hz");
     EXPECT_EQ(site_phrase("unmodelled_mode", "sensor", "velocity"), " (in the reading of sensor 'velocity')");
+}
+
+// The sensor's own low-pass (m = 0): a tachometer of 25 Hz bandwidth,
+// zeta 0.4. Below its corner it reads the velocity 2 zeta / w = 5.1 ms late,
+// which a delay of that output takes in part; that fit opens the sensor
+// site, whose variant then names the low-pass with m near 0.
+TEST(GapSitesSensor, the_diagnosis_names_a_sensors_own_low_pass)
+{
+    const double f = 25.0, zeta = 0.4;
+    const Signals data = truth_record(0.002, f, zeta, 0.0);
+    const NominalModel m = nominal_from_json(axis_doc(), kTs);
+    GapOptions o;
+    o.effects = {Effect::unmodelled_mode, Effect::output_delay, Effect::gain_error, Effect::viscous_friction};
+    const GapResult r = diagnose(m, data, nullptr, o);
+    ASSERT_FALSE(r.verdict.effects.empty());
+    const EffectInstance& e = r.verdict.effects[0];
+    EXPECT_EQ(e.kind, Effect::unmodelled_mode);
+    EXPECT_EQ(e.site, Site::sensor);
+    EXPECT_EQ(e.coupling, 1);
+    ASSERT_EQ(e.params.size(), 3u);
+    EXPECT_NEAR(e.params[0], f, 0.05 * f);
+    EXPECT_NEAR(e.params[1], zeta, 0.1 * zeta);
+    EXPECT_LT(e.params[2], 0.1);
+    EXPECT_GE(r.verdict.shrink, 0.8);
 }
 
 // The gate: on a record with no resonance to place (the axis with a viscous

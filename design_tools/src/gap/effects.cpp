@@ -281,13 +281,14 @@ const std::vector<EffectDescriptor>& catalog()
          }},
         {Effect::unmodelled_mode, "unmodelled_mode",
          "eta'' + 2 zeta w eta' + w^2 eta = w^2 u; in series at the force input (the plant is driven by eta, unit static "
-         "gain) or at the outputs (they see g_c eta'/w, a resonance without static gain); or in one sensor's reading, the "
-         "sensor on a compliant mount: b'' + 2 zeta w b' + w^2 b = 2 zeta w y' + w^2 y, the sensor reads b "
-         "(transmissibility, unit static gain)", false,
+         "gain) or at the outputs (they see g_c eta'/w, a resonance without static gain); or in one sensor's reading, a "
+         "second-order sensor: b'' + 2 zeta w b' + w^2 b = m 2 zeta w y' + w^2 y, the sensor reads b (unit static gain; "
+         "m = 1 a sensor on a compliant mount, the base-excitation transmissibility; m = 0 the sensor's own low-pass)", false,
          {Site::output, Site::force_input, Site::sensor},
          "a frequency sweep over the band where the residual peaks, with a sensor at the actuator and one at the load",
          [](const std::vector<std::string>& o, const Units& u, Site site) {
              std::vector<ParamInfo> v = {{"f_hz", "Hz"}, {"zeta", "1"}};
+             if (site == Site::sensor) v.push_back({"mount", "1"});
              if (site == Site::force_input || site == Site::sensor) return v;
              std::vector<std::string> gu;
              for (size_t i = 0; i < o.size(); ++i) gu.push_back((i < u.y.size() ? u.y[i] : "[" + o[i] + "]") + "/(" + u.u + ")");
@@ -300,6 +301,8 @@ const std::vector<EffectDescriptor>& catalog()
              const double flo = std::max(2.0 / c.fit_seconds, 1e-3), fhi = 0.25 / c.Ts;
              // zeta <= 0.5: a resonant mode, not an extra first-order lag.
              s.spec = {{1.0, flo, fhi, false}, {1.0, 0.005, 0.5, false}};
+             // At a sensor, the zero's share m in [0, 1] (the reading is linear in it).
+             if (site == Site::sensor) s.spec.push_back({1.0, 0.0, 1.0, false});
              for (size_t i = 0; i < ny; ++i) s.spec.push_back({c.Sy[i] / c.Su, -kBig, kBig, false});
              // Starts: the largest peaks of the nominal residual spectrum and a
              // log grid over the band, screened by cost; gains start at 0.1
@@ -312,6 +315,13 @@ const std::vector<EffectDescriptor>& catalog()
              for (double f = flo; f <= fhi; f *= std::pow(10.0, 1.0 / per_decade)) fs.push_back(f);
              for (double f : fs) {
                  if (f < flo || f > fhi) continue;
+                 if (site == Site::sensor) {
+                     // Both ends of the zero's share (which.cpp replaces these
+                     // starts by the located resonance's).
+                     s.starts.push_back({f, 0.05, 1.0});
+                     s.starts.push_back({f, 0.05, 0.0});
+                     continue;
+                 }
                  std::vector<double> st = {f, 0.05};
                  st.resize(2 + ny, 0.1);
                  s.starts.push_back(st);
@@ -328,6 +338,7 @@ const std::vector<EffectDescriptor>& catalog()
                  if (t.coupling < 0 || size_t(t.coupling) >= cmp.size())
                      throw std::logic_error("unmodelled_mode: no compared output " + std::to_string(t.coupling));
                  t.sensor_mode = cmp[size_t(t.coupling)];
+                 t.sensor_zero = p.at(2);
              } else {
                  t.mode = true;
                  per_model_output(p, replay_compared(s), 2, t.mode_gain, false);

@@ -394,17 +394,19 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     std::vector<double> rk(m.closed_loop ? m.loop.references.size() : 0), ym(m.closed_loop ? m.loop.measured.size() : 0),
         cvec(static_cast<size_t>(nu));
     double eta[2] = {0, 0};
-    // The mount resonance in one sensor's reading (unmodelled_mode at
-    // Site::sensor): b'' + 2 zeta w b' + w^2 b = 2 zeta w y' + w^2 y, i.e.
-    // H(s) = (2 zeta w s + w^2) / (s^2 + 2 zeta w s + w^2) (base excitation's
-    // transmissibility, unit static gain, peak about 1/(2 zeta) at w),
-    // realised as z' = [[0, 1], [-w^2, -2 zeta w]] z + [0; 1] y, b = w^2 z1 +
-    // 2 zeta w z2. The true output is continuous, so it is held first order
+    // The mode in one sensor's reading (unmodelled_mode at Site::sensor):
+    // b'' + 2 zeta w b' + w^2 b = m 2 zeta w y' + w^2 y, i.e.
+    // H(s) = (m 2 zeta w s + w^2) / (s^2 + 2 zeta w s + w^2), unit static
+    // gain. m = 1: a sensor on a compliant mount (base excitation's
+    // transmissibility, peak about 1/(2 zeta) at w, nearly 1 below it);
+    // m = 0: the sensor's own second-order low-pass (below w a lag of
+    // 2 zeta / w). Realised as z' = [[0, 1], [-w^2, -2 zeta w]] z + [0; 1] y,
+    // b = w^2 z1 + m 2 zeta w z2. The true output is continuous, so it is held first order
     // (linear between samples): z(k+1) = F z(k) + G0 y(k) + G1 (y(k+1) - y(k)),
     // [F G0 G1] the top rows of exp([[Af, Bf, 0], [0, 0, 1/Ts], [0, 0, 0]] Ts).
     // From rest at the first sample's value.
     const int sensor_out = T.sensor_mode;
-    const double sm_w = 2 * M_PI * std::max(T.f_hz, 1e-6), sm_z = T.zeta;
+    const double sm_w = 2 * M_PI * std::max(T.f_hz, 1e-6), sm_z = T.zeta, sm_m = T.sensor_zero;
     Eigen::Matrix2d sm_F = Eigen::Matrix2d::Identity();
     Eigen::Vector2d sm_G0 = Eigen::Vector2d::Zero(), sm_G1 = Eigen::Vector2d::Zero(), sm_x = Eigen::Vector2d::Zero();
     double sm_prev = 0.0;
@@ -443,7 +445,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
                 sm_x = sm_F * sm_x + sm_G0 * sm_prev + sm_G1 * (yk - sm_prev);
             sm_first = false;
             sm_prev = yk;
-            ytrue[size_t(sensor_out)] = sm_w * sm_w * sm_x(0) + 2 * sm_z * sm_w * sm_x(1);
+            ytrue[size_t(sensor_out)] = sm_w * sm_w * sm_x(0) + sm_m * 2 * sm_z * sm_w * sm_x(1);
         }
         for (const NominalModel::OutputHold& h : m.holds) ytrue[size_t(h.output)] = ytrue[size_t(h.sample)];
         if (h_out.len == 0) h_out.init(ny, dout_max + 2, ytrue.data());

@@ -173,42 +173,65 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
             }
         });
     // The mode in a sensor's reading (unmodelled_mode at Site::sensor, one
-    // variant per compared output) is a resonance the other resonant
-    // candidates also see, placed differently: the mode at the outputs or in
-    // series, or a nominal mode moved (mode_shift), each lowers part of the
-    // gap a mount resonance leaves. Where none of them lowers the held-out gap
-    // by the selection margin, the record holds no resonance to place and the
-    // sensor variants are not fitted (they would cost one replay per start and
-    // output and find nothing). Otherwise each is fitted from those
-    // candidates' fitted frequency and damping (f_hz, zeta: the first two
-    // parameters of both effects) and from the residual's peaks, without the
-    // log grid and without the continuation: the resonance is already located.
+    // variant per compared output: a second-order sensor, from a compliant
+    // mount's transmissibility, m = 1, to the sensor's own low-pass, m = 0)
+    // is seen in part by other candidates, placed differently: a resonance
+    // by the mode at the outputs or in series and by a nominal mode moved
+    // (mode_shift), the lag 2 zeta / w a low-pass makes below its resonance
+    // by a delay of that output. Where none of them lowers the held-out gap
+    // by the selection margin, the record holds no sensor mode to place and
+    // the sensor variants are not fitted (they would cost one replay per
+    // start and output and find nothing). Otherwise each is fitted, without
+    // the log grid and without the continuation, from the located resonance:
+    // those candidates' fitted frequency and damping (f_hz, zeta: the first
+    // two parameters of both effects), for a delay d of its output the
+    // low-pass of that lag, f = zeta / (pi d) at zeta 0.1, 0.3 and 0.5, and
+    // the residual's peaks; each at both ends of m.
     {
         std::vector<std::vector<double>> found;  // physical (f_hz, zeta) of the resonant candidates that found one
+        std::vector<std::vector<double>> lags;   // per compared output: the delays of output_delay fits that lower the gap
         for (size_t i = 0; i < jobs.size(); ++i) {
             const EffectSetup& js = jobs[i].setup;
+            if (!(job_report[i].shrink >= opt.margin)) continue;
+            if (js.kind == Effect::output_delay) {
+                lags.resize(std::max(lags.size(), js.spec.size()));
+                for (size_t c = 0; c < js.spec.size() && c < outcome[i].theta.size(); ++c)
+                    if (outcome[i].theta[c] > 0) lags[c].push_back(js.spec[c].scale * outcome[i].theta[c]);
+                continue;
+            }
             if (!((js.kind == Effect::unmodelled_mode && js.site != Site::sensor) || js.kind == Effect::mode_shift) ||
-                !(job_report[i].shrink >= opt.margin) || outcome[i].theta.size() < 2 || js.spec.size() < 2)
+                outcome[i].theta.size() < 2 || js.spec.size() < 2)
                 continue;
             found.push_back({js.spec[0].scale * outcome[i].theta[0], js.spec[1].scale * outcome[i].theta[1]});
         }
         std::vector<size_t> todo;
-        if (!found.empty())
-            for (Job j : sensor_variants) {
-                // Starts in the variant's normalized units (ParamSpec::scale), inside its bounds.
-                const ParamSpec &sf = j.setup.spec[0], &sz = j.setup.spec[1];
-                const auto clamp = [](double v, const ParamSpec& p) { return std::min(p.hi, std::max(p.lo, v / p.scale)); };
-                std::vector<std::vector<double>> st;
-                for (const std::vector<double>& fz : found) st.push_back({clamp(fz[0], sf), clamp(fz[1], sz)});
-                for (double f : ctx.residual_peaks_hz)
-                    if (f / sf.scale >= sf.lo && f / sf.scale <= sf.hi) st.push_back({f / sf.scale, clamp(0.05, sz)});
-                j.setup.starts = st;
-                todo.push_back(jobs.size());
-                jobs.push_back(j);
+        for (Job j : sensor_variants) {
+            // Starts in the variant's normalized units (ParamSpec::scale), inside its bounds.
+            const ParamSpec &sf = j.setup.spec[0], &sz = j.setup.spec[1];
+            const auto clamp = [](double v, const ParamSpec& p) { return std::min(p.hi, std::max(p.lo, v / p.scale)); };
+            std::vector<std::vector<double>> fz;  // physical (f_hz, zeta)
+            const size_t c = size_t(j.setup.coupling);
+            const bool lagged = c < lags.size() && !lags[c].empty();
+            if (found.empty() && !lagged) continue;
+            fz = found;
+            if (lagged)
+                for (double d : lags[c])
+                    for (double z : {0.1, 0.3, 0.5}) fz.push_back({z / (M_PI * d), z});
+            for (double f : ctx.residual_peaks_hz) fz.push_back({f, 0.05});
+            std::vector<std::vector<double>> st;
+            for (const std::vector<double>& p : fz) {
+                if (p[0] / sf.scale < sf.lo || p[0] / sf.scale > sf.hi) continue;
+                for (double m : {1.0, 0.0}) st.push_back({clamp(p[0], sf), clamp(p[1], sz), m});
             }
-        else if (!sensor_variants.empty())
-            R.skipped.push_back("unmodelled_mode in a sensor's reading: no mode at the outputs or in series and no "
-                                "mode_shift lowers the held-out gap by the margin, so there is no resonance to place");
+            if (st.empty()) continue;
+            j.setup.starts = st;
+            todo.push_back(jobs.size());
+            jobs.push_back(j);
+        }
+        if (todo.empty() && !sensor_variants.empty())
+            R.skipped.push_back("unmodelled_mode in a sensor's reading: no mode at the outputs or in series, no "
+                                "mode_shift and no delay of an output lowers the held-out gap by the margin, so there "
+                                "is no sensor mode to place");
         outcome.resize(jobs.size());
         job_report.resize(jobs.size());
         if (!todo.empty())

@@ -45,9 +45,10 @@ Effect effect_from_name(const std::string& name);  // std::invalid_argument if u
 // modes: a play in the deflection, c D^alpha of the deflection in parallel
 // with the spring (Kelvin-Voigt). The unmodelled mode acts in series at the
 // force input (between the actuator and the plant), at the outputs (a
-// force-driven resonance the sensors see), or in one sensor's reading (the
-// sensor on a compliant mount: its reading is the mount's transmissibility
-// of the true output). The mode shift acts on one resonant mode of the
+// force-driven resonance the sensors see), or in one sensor's reading (a
+// second-order sensor: the mount's transmissibility of the true output
+// where the sensor sits on a compliant mount, its own low-pass where the
+// sensor's dynamics are second order, or between the two). The mode shift acts on one resonant mode of the
 // nominal plant (mode_shift.hpp), one site per mode.
 enum class Site { force_input, coupling, output, mode, sensor };
 struct EffectInstance {
@@ -155,7 +156,8 @@ struct ReplayTerms {
     double cfc = 0, calpha = 0.5;
     bool mode = false;                // the mode at the outputs
     bool series_mode = false;         // the mode in series at the force input
-    int sensor_mode = -1;             // model output whose reading passes through the mount resonance (-1: none)
+    int sensor_mode = -1;             // model output whose reading passes through the mode at its sensor (-1: none)
+    double sensor_zero = 1.0;         // that mode's zero share: 1 a compliant mount, 0 the sensor's own low-pass
     double f_hz = 1, zeta = 0.1;
     std::vector<double> mode_gain, offset, step;              // per model output
     Eigen::MatrixXd A, B;             // the plant with a nominal mode moved (mode_shift; empty: the nominal's)
