@@ -310,14 +310,16 @@ const std::vector<EffectDescriptor>& catalog()
              // outputs 6 per decade; in series 24 per decade: a series mode
              // moves the loop's own dynamics, so one started 20 % off its
              // frequency costs more than none and the screen drops it.
+             // At a sensor, the peaks alone, each at both ends of the zero's
+             // share: which.cpp fits this site only where another candidate
+             // located the resonance, and puts that one's starts ahead.
              std::vector<double> fs = c.residual_peaks_hz;
              const double per_decade = site == Site::force_input ? 24.0 : 6.0;
-             for (double f = flo; f <= fhi; f *= std::pow(10.0, 1.0 / per_decade)) fs.push_back(f);
+             if (site != Site::sensor)
+                 for (double f = flo; f <= fhi; f *= std::pow(10.0, 1.0 / per_decade)) fs.push_back(f);
              for (double f : fs) {
                  if (f < flo || f > fhi) continue;
                  if (site == Site::sensor) {
-                     // Both ends of the zero's share (which.cpp replaces these
-                     // starts by the located resonance's).
                      s.starts.push_back({f, 0.05, 1.0});
                      s.starts.push_back({f, 0.05, 0.0});
                      continue;

@@ -205,33 +205,39 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
             found.push_back({js.spec[0].scale * outcome[i].theta[0], js.spec[1].scale * outcome[i].theta[1]});
         }
         std::vector<size_t> todo;
+        bool led = false;  // some variant had a located resonance or lag to start from
         for (Job j : sensor_variants) {
-            // Starts in the variant's normalized units (ParamSpec::scale), inside its bounds.
-            const ParamSpec &sf = j.setup.spec[0], &sz = j.setup.spec[1];
-            const auto clamp = [](double v, const ParamSpec& p) { return std::min(p.hi, std::max(p.lo, v / p.scale)); };
-            std::vector<std::vector<double>> fz;  // physical (f_hz, zeta)
             const size_t c = size_t(j.setup.coupling);
             const bool lagged = c < lags.size() && !lags[c].empty();
             if (found.empty() && !lagged) continue;
-            fz = found;
+            led = true;
+            std::vector<std::vector<double>> fz = found;  // physical (f_hz, zeta)
             if (lagged)
                 for (double d : lags[c])
                     for (double z : {0.1, 0.3, 0.5}) fz.push_back({z / (M_PI * d), z});
-            for (double f : ctx.residual_peaks_hz) fz.push_back({f, 0.05});
+            // Starts in the variant's normalized units (ParamSpec::scale), the
+            // frequency inside its band, each at both ends of m, ahead of the
+            // descriptor's own (the residual's peaks).
+            const ParamSpec &sf = j.setup.spec[0], &sz = j.setup.spec[1];
+            const auto clamp = [](double v, const ParamSpec& p) { return std::min(p.hi, std::max(p.lo, v / p.scale)); };
             std::vector<std::vector<double>> st;
             for (const std::vector<double>& p : fz) {
                 if (p[0] / sf.scale < sf.lo || p[0] / sf.scale > sf.hi) continue;
-                for (double m : {1.0, 0.0}) st.push_back({clamp(p[0], sf), clamp(p[1], sz), m});
+                for (double m : {1.0, 0.0}) st.push_back({p[0] / sf.scale, clamp(p[1], sz), m});
             }
+            st.insert(st.end(), j.setup.starts.begin(), j.setup.starts.end());
             if (st.empty()) continue;
             j.setup.starts = st;
             todo.push_back(jobs.size());
             jobs.push_back(j);
         }
         if (todo.empty() && !sensor_variants.empty())
-            R.skipped.push_back("unmodelled_mode in a sensor's reading: no mode at the outputs or in series, no "
-                                "mode_shift and no delay of an output lowers the held-out gap by the margin, so there "
-                                "is no sensor mode to place");
+            R.skipped.push_back(
+                led ? "unmodelled_mode in a sensor's reading: the located resonances and lags lie outside the band "
+                      "the record resolves and the residual has no peak inside it, so there is no sensor mode to place"
+                    : "unmodelled_mode in a sensor's reading: no mode at the outputs or in series, no mode_shift and "
+                      "no delay of an output lowers the held-out gap by the margin, so there is no sensor mode to "
+                      "place");
         outcome.resize(jobs.size());
         job_report.resize(jobs.size());
         if (!todo.empty())
