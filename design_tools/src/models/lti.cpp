@@ -50,6 +50,53 @@ Eigen::MatrixXcd StateSpace::frequency_response(double w) const
     return transfer(continuous() ? jw : std::exp(jw * Ts));
 }
 
+StateSpace StateSpace::balanced() const
+{
+    StateSpace b = *this;
+    const Eigen::Index n = nx();
+    if (n == 0) return b;
+    // Parlett-Reinsch: repeat over the states, scaling state i by a power of
+    // two f when that lowers ||row_i|| + ||col_i|| (off-diagonal, 1-norms) by
+    // more than 5 % (LAPACK dgebal's factor 0.95), until no state changes.
+    constexpr double radix = 2.0;
+    bool changed = true;
+    for (int sweep = 0; changed && sweep < 200; ++sweep) {
+        changed = false;
+        for (Eigen::Index i = 0; i < n; ++i) {
+            double c = 0, r = 0;
+            for (Eigen::Index j = 0; j < n; ++j) {
+                if (j == i) continue;
+                c += std::fabs(b.A(j, i));
+                r += std::fabs(b.A(i, j));
+            }
+            if (!(c > 0) || !(r > 0) || !std::isfinite(c) || !std::isfinite(r)) continue;
+            double g = r / radix, f = 1.0;
+            const double s = c + r;
+            while (c < g) {
+                f *= radix;
+                c *= radix;
+                r /= radix;
+                g = r / radix;
+            }
+            g = r * radix;
+            while (c >= g) {
+                f /= radix;
+                c /= radix;
+                r *= radix;
+                g = r * radix;
+            }
+            if ((c + r) >= 0.95 * s * 1.0 || f == 1.0) continue;
+            // x_i = f xb_i: column i of A and C times f, row i of A and B over f.
+            b.A.col(i) *= f;
+            b.A.row(i) /= f;
+            b.B.row(i) /= f;
+            b.C.col(i) *= f;
+            changed = true;
+        }
+    }
+    return b;
+}
+
 Eigen::VectorXcd StateSpace::poles() const
 {
     if (A.rows() == 0) return Eigen::VectorXcd();

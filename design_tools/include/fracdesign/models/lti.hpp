@@ -38,6 +38,16 @@ struct StateSpace {
     // Undamped/lightly damped natural frequencies in Hz: |Im lambda|/(2 pi) of the eigenvalues of A with
     // Im lambda > tol_rad_s, ascending, each conjugate pair counted once (continuous models only).
     std::vector<double> natural_frequencies_hz(double tol_rad_s = 1e-6) const;
+    // The same system in balanced state coordinates: x = S xb with S diagonal,
+    // powers of two, so that each state's row and column of A have about the
+    // same norm (Parlett & Reinsch, Numer. Math. 13 (1969), the scaling step
+    // of LAPACK's dgebal without its permutations). A poorly scaled
+    // realization (an Oustaloup cascade over eleven decades has entries of
+    // 1e12 beside 1e-5) loses the accuracy of its matrix exponential; the
+    // balanced one has the same eigenvalues, transfer matrix and, the scaling
+    // being exact in binary floating point, the same products up to rounding.
+    // The state names are kept (each state is scaled, not mixed).
+    StateSpace balanced() const;
     // Transmission zeros of the SISO channel (output i, input j): finite generalized eigenvalues of the
     // Rosenbrock pencil [[A, b],[c, d]] - s [[I,0],[0,0]].
     Eigen::VectorXcd siso_zeros(Eigen::Index i, Eigen::Index j) const;
