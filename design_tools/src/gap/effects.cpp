@@ -171,9 +171,14 @@ const std::vector<EffectDescriptor>& catalog()
              return std::vector<ParamInfo>{{"Fc", u.u}, {"Fs", u.u}, {"vs", u.v}};
          },
          [](const FitContext& c, Site) {
-             return EffectSetup{Effect::stribeck_friction, Site::force_input, 0,
-                                {{c.Su, 0, kBig, false}, {c.Su, 0, kBig, false}, {c.Sv, 1e-3, 1e2, false}},
-                                {{0.05, 0.15, 0.1}, {0.2, 0.4, 0.3}}, false};
+             // The cost is rough in vs (the hump only shows below it): a grid
+             // of Fc/Su x Fs/Fc x vs/Sv, screened by cost, the best 3 refined.
+             EffectSetup s{Effect::stribeck_friction, Site::force_input, 0,
+                           {{c.Su, 0, kBig, false}, {c.Su, 0, kBig, false}, {c.Sv, 1e-3, 1e2, false}}, {}, true};
+             for (double fc : {0.05, 0.15, 0.4})
+                 for (double ratio : {1.5, 2.5})
+                     for (double vs : {0.03, 0.1, 0.3, 1.0}) s.starts.push_back({fc, fc * ratio, vs});
+             return s;
          },
          [](const std::vector<double>& p, Site, const ReplaySetup&, ReplayTerms& t) {
              // The curve falls from the static level Fs to Fc: Fs < Fc reads as Fs = Fc.

@@ -293,7 +293,8 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
                   return a.first.score > b.first.score;
               });
     // Nested effects: stribeck_friction contains coulomb_friction (Fs = Fc);
-    // it ranks above it only when it lowers the held-out gap by the margin.
+    // it ranks above it when, and only when, it lowers the held-out gap by
+    // the margin.
     // Likewise mode_shift (any change seen at one mode: near a mode, Kelvin-
     // Voigt damping in a spring or an added mode coupled to it moves that
     // mode's frequency and damping) ranks above fractional_damping and
@@ -313,10 +314,18 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
             if (f.effects[0].kind == contained) ic = int(i);
             if (f.effects[0].kind == container) is = int(i);
         }
-        if (ic > is && is >= 0 && report_of(list[size_t(is)]).gap > (1.0 - opt.margin) * report_of(list[size_t(ic)]).gap) {
-            auto moved = list[size_t(ic)];
-            list.erase(list.begin() + ic);
-            list.insert(list.begin() + is, moved);
+        if (ic < 0 || is < 0) return;
+        const bool by_margin = report_of(list[size_t(is)]).gap <= (1.0 - opt.margin) * report_of(list[size_t(ic)]).gap;
+        // The container behind the contained although it lowers the gap by
+        // the margin: ahead of it (the parameter penalty is taken on the
+        // shrink, so near a full shrink it outweighs a gap several times
+        // smaller: Stribeck leaving 0.0020 against Coulomb's 0.0073 scored
+        // 0.983 against 0.988); ahead of it without the margin: behind it.
+        const int from = by_margin ? is : ic, to = by_margin ? ic : is;
+        if (from > to) {
+            auto moved = list[size_t(from)];
+            list.erase(list.begin() + from);
+            list.insert(list.begin() + to, moved);
         }
     };
     for (const std::pair<Effect, Effect>& n : {std::pair<Effect, Effect>{Effect::coulomb_friction, Effect::stribeck_friction},
