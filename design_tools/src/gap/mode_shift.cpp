@@ -49,16 +49,62 @@ std::vector<PlantMode> resonant_plant_modes(const NominalModel& m)
 }
 
 void shift_plant_mode(const PlantMode& pm, double Ts, double f_hz, double zeta, const Eigen::MatrixXd& A,
-                      const Eigen::MatrixXd& B, Eigen::MatrixXd& A2, Eigen::MatrixXd& B2)
+                      const Eigen::MatrixXd& B, int force_input, Eigen::MatrixXd& A2, Eigen::MatrixXd& B2)
 {
+    using cd = std::complex<double>;
     const double w = 2 * M_PI * f_hz;
-    const std::complex<double> s2(-zeta * w, w * std::sqrt(std::max(0.0, 1 - zeta * zeta)));
-    const std::complex<double> z2 = std::exp(s2 * Ts);
-    const std::complex<double> s = std::log(pm.z) / Ts;
-    const std::complex<double> g = (pm.z - 1.0) / s, g2 = (z2 - 1.0) / s2;
-    const Eigen::MatrixXcd P = pm.v * pm.w;
-    A2 = A + 2.0 * ((z2 - pm.z) * P).real();
-    B2 = B + 2.0 * ((g2 / g - 1.0) * (P * B.cast<std::complex<double>>())).real();
+    const cd s2(-zeta * w, w * std::sqrt(std::max(0.0, 1 - zeta * zeta)));
+    const cd z2 = std::exp(s2 * Ts);
+    const cd s = std::log(pm.z) / Ts;
+    const cd g = (pm.z - 1.0) / s;
+    // The force's modal coordinate, continuous: eta_B = w B_c = w B / g.
+    cd etaB = 0.0;
+    if (force_input >= 0 && force_input < B.cols()) etaB = (pm.w * B.col(force_input).cast<cd>())(0) / g;
+    const double bnorm = force_input >= 0 && force_input < B.cols() ? B.col(force_input).norm() : 0.0;
+    if (!(std::abs(etaB) > 1e-9 * pm.w.norm() * std::max(bnorm, 1e-300) / std::max(std::abs(g), 1e-300))) {
+        // The force does not reach the mode: its eigenvalue pair moved with
+        // the continuous input and output maps (residues) kept.
+        const cd g2 = (z2 - 1.0) / s2;
+        const Eigen::MatrixXcd P = pm.v * pm.w;
+        A2 = A + 2.0 * ((z2 - pm.z) * P).real();
+        B2 = B + 2.0 * ((g2 / g - 1.0) * (P * B.cast<cd>())).real();
+        return;
+    }
+    // The mode in its mechanical coordinates z = (q, q'): the force enters
+    // its acceleration, q'' + 2 zeta w q' + w^2 q = u, so M = [[0, 1],
+    // [-|s|^2, 2 Re s]] with input [0; 1]. Its eigenvector [1; s] is v / kappa
+    // with kappa = 1/((s - conj s) eta_B) (the companion's left eigenvector
+    // [-conj s, 1]/(s - conj s) reads the input as 1/(s - conj s)). With
+    // x = T z on the mode's subspace, T [1; s] = v / kappa, and z = S x,
+    // S = 2 Re([1; s] kappa w) (S T = I, S zero on the other modes).
+    const cd kappa = 1.0 / ((s - std::conj(s)) * etaB);
+    const Eigen::VectorXcd u = pm.v / kappa;
+    const Eigen::Index n = A.rows();
+    Eigen::MatrixXd T(n, 2), S(2, n);
+    T.col(1) = u.imag() / s.imag();
+    T.col(0) = u.real() - s.real() * T.col(1);
+    S.row(0) = 2.0 * (kappa * pm.w).real();
+    S.row(1) = 2.0 * (kappa * s * pm.w).real();
+    // The shifted mode keeps T (the output maps of q and q'), the force's
+    // [0; 1] and every input's continuous map in z: the zero-order hold of
+    // M is (Phi, Gamma = M^-1 (Phi - I)), so S B = Gamma c per input and the
+    // shifted S B' = Gamma' c. A stiffness change at fixed modal mass: a
+    // position output's share of the mode scales by w^2/w'^2, a rate
+    // output's stays (to O(zeta^2)); keeping the residues instead left a
+    // 45 % stiffness drop on a linear scale 12 % off in frequency.
+    auto hold = [&](cd sc, Eigen::Matrix2d& Phi, Eigen::Matrix2d& Gam) {
+        Eigen::Matrix2d M;
+        M << 0.0, 1.0, -std::norm(sc), 2.0 * sc.real();
+        Eigen::MatrixXd Phi_x, Gam_x;
+        zoh(M, Eigen::Matrix2d::Identity(), Ts, Phi_x, Gam_x);
+        Phi = Phi_x;
+        Gam = Gam_x;
+    };
+    Eigen::Matrix2d Phi, Gam, Phi2, Gam2;
+    hold(s, Phi, Gam);
+    hold(s2, Phi2, Gam2);
+    A2 = A + T * (Phi2 - Phi) * S;
+    B2 = B + T * (Gam2 * Gam.inverse() - Eigen::Matrix2d::Identity()) * (S * B);
 }
 
 std::string plant_mode_name(const PlantMode& pm)

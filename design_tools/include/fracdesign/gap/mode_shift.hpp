@@ -38,9 +38,18 @@ struct PlantMode {
 // 1e-6 |z| to another eigenvalue is left out (its projector is ill-defined).
 std::vector<PlantMode> resonant_plant_modes(const NominalModel& m);
 
-// A' and B' of the plant with mode `pm` moved to f_hz, zeta (equations above).
+// A' and B' of the plant with mode `pm` moved to f_hz, zeta, as a stiffness
+// and damping change at fixed modal mass: in the mode's mechanical
+// coordinates (q, q'), where the force input `force_input` drives its
+// acceleration (q'' + 2 zeta w q' + w^2 q = u), the block's w and zeta
+// change while the outputs' maps of q and q' and every input's continuous
+// map are kept (mode_shift.cpp). A position output's share of the mode then
+// scales by w^2/w'^2 and a rate output's is kept to O(zeta^2); the
+// equations above (residues kept) are the same for rate outputs and are
+// used when the force does not reach the mode. Every other eigenvalue of A
+// stays; C and D are unchanged.
 void shift_plant_mode(const PlantMode& pm, double Ts, double f_hz, double zeta, const Eigen::MatrixXd& A,
-                      const Eigen::MatrixXd& B, Eigen::MatrixXd& A2, Eigen::MatrixXd& B2);
+                      const Eigen::MatrixXd& B, int force_input, Eigen::MatrixXd& A2, Eigen::MatrixXd& B2);
 
 // How the report names the mode: "mode at 12.3 Hz, zeta 0.021".
 std::string plant_mode_name(const PlantMode& pm);
