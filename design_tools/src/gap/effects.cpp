@@ -368,6 +368,29 @@ const std::vector<EffectDescriptor>& catalog()
          },
          [](const std::vector<double>& p, Site, const ReplaySetup& s, ReplayTerms& t) {
              per_model_output(p, replay_compared(s), 0, t.offset, false);
+         },
+         // Nested restrictions: with several outputs, the offset on one
+         // sensor alone (the others held at 0), each a variant of its own.
+         // Where only differences of offsets show (a loop closed through an
+         // encoder drives its reading to the reference, so an encoder offset
+         // and the opposite offset on a second sensor leave the same record
+         // once the start is fitted), the full set spread one encoder offset
+         // over both sensors (0.0012 and -0.0090 rad for 0.0102 on the
+         // encoder); one offset explains it with one parameter. (Two such
+         // variants the record cannot tell apart at all score the same: the
+         // first compared output's is named.)
+         [](const FitContext& c, Site) {
+             std::vector<EffectSetup> v;
+             const size_t ny = c.Sy.size();
+             for (size_t i = 0; ny > 1 && i < ny; ++i) {
+                 EffectSetup s{Effect::sensor_offset, Site::force_input, 0, {}, {std::vector<double>(ny, 0.0)}, false};
+                 for (size_t j = 0; j < ny; ++j) {
+                     s.spec.push_back({c.Sy[j], j == i ? -kBig : 0.0, j == i ? kBig : 0.0, j != i});
+                     s.spec.back().held = j != i;
+                 }
+                 v.push_back(s);
+             }
+             return v;
          }},
         {Effect::quantization, "quantization", "q_c round(y_c / q_c), compared by cells", false, {Site::force_input},
          "slow moves with little noise",

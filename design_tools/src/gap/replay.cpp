@@ -23,7 +23,7 @@ double replay_Ts(const ReplaySetup& s) { return s.model->Ts; }
 // sample of the compared outputs; at_rest: the steady state of the first
 // plant input, (I - A) x0 = B u(0) (open loop, the input after the
 // document's limits), x0 = 0 in a closed loop; given: the document's.
-static Eigen::VectorXd initial_state(const NominalModel& m, const ReplaySetup& s, const Signals& data,
+static Eigen::VectorXd initial_state(const NominalModel& m, ReplaySetup& s, const Signals& data,
                               const std::vector<std::string>& outputs)
 {
     const Eigen::Index nx = m.A.rows();
@@ -47,7 +47,8 @@ static Eigen::VectorXd initial_state(const NominalModel& m, const ReplaySetup& s
         Cc.row(Eigen::Index(i)) = m.C.row(s.compared[i]);
         y0(Eigen::Index(i)) = data.col(outputs[i])(0);
     }
-    return Cc.completeOrthogonalDecomposition().solve(y0);
+    s.x0_fit = Cc.completeOrthogonalDecomposition().pseudoInverse();
+    return s.x0_fit * y0;
 }
 
 ReplaySetup make_replay_setup(const NominalModel& m, const Signals& data, const std::vector<std::string>& inputs,
@@ -387,6 +388,18 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     tr.v.resize(N);
     double static_in = 0.0;  // this step's command entering the static path (gain x the delayed command)
     std::vector<double> x(s.x0.data(), s.x0.data() + nx), xn(static_cast<size_t>(nx));
+    // A fitted start goes through the first sample as the sensors read it:
+    // with sensor offsets, through the first sample less them (x0 - Cc^+ o).
+    // Else an offset on the sensor a loop reads replays a start transient the
+    // record does not have (the record's start was fitted with the offset in
+    // it), and only a second sensor's opposite offset, never the loop's own,
+    // matched such a record.
+    if (s.x0_fit.size() && std::any_of(T.offset.begin(), T.offset.end(), [](double o) { return o != 0.0; })) {
+        Eigen::VectorXd oc(ncmp);
+        for (int c = 0; c < ncmp; ++c) oc(c) = T.offset[size_t(s.compared[size_t(c)])];
+        const Eigen::VectorXd dx = s.x0_fit * oc;
+        for (int j = 0; j < nx; ++j) x[size_t(j)] -= dx(j);
+    }
     std::unique_ptr<Controller> ctl = m.closed_loop ? s.controller0->clone() : nullptr;
     std::vector<double> ytrue(static_cast<size_t>(ny)), ysens(static_cast<size_t>(ny)), yraw(static_cast<size_t>(ny)),
         u(static_cast<size_t>(nu)),

@@ -211,6 +211,10 @@ struct ReplaySetup {
     const NominalModel* model = nullptr;
     Eigen::MatrixXd exo;               // samples x (plant inputs) open loop, or x (references + additive) closed loop
     Eigen::VectorXd x0;                // initial plant state
+    // A fitted start (gap.initial_state "fitted"): x0 = x0_fit y0, the least
+    // squares map of the compared outputs' first sample (empty otherwise);
+    // the replay takes sensor offsets out of y0 through it.
+    Eigen::MatrixXd x0_fit;
     // The controller started at the first sample (closed loop; each replay runs a clone).
     std::shared_ptr<const Controller> controller0;
     std::vector<int> compared;         // model output index of each compared output
