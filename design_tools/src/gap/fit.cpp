@@ -352,6 +352,7 @@ FitReport make_report(const FitProblem& P, const FitOutcome& o, const Evaluator&
     if (!std::isfinite(r.gap)) r.gap = std::numeric_limits<double>::infinity();
     r.shrink = E.gap_before > 0 ? 1.0 - r.gap / E.gap_before : 0.0;
     r.score = r.shrink - penalty * r.fitted_params;
+    r.fit_cost = o.cost;
     r.solver = o.brief;
     r.band_nrmse = band_nrmse(E.y_eval, yhat, E.Ts, E.scale);
     return r;

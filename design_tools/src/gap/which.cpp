@@ -24,6 +24,7 @@ FitReport none_candidate(const GapResult& R)
     none.gap = R.gap_before_total;
     none.band_nrmse = R.band_nrmse_before;
     none.solver = "nominal model";
+    none.fit_cost = R.fit_cost_nominal;
     return none;
 }
 
@@ -148,6 +149,8 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
     nominal.effects.clear();
     const double base_cost = nominal.cost({});
     const double white = white_cost(base_problem, B.noise_sd.empty() ? ctx.white_sd : B.noise_sd);
+    R.fit_cost_nominal = base_cost;
+    R.fit_cost_white = white;
     // The held-out gap's white part, in the fit rows' proportion.
     const double g2 = R.gap_before_total * R.gap_before_total;
     const double w2 = base_cost > 0 ? g2 * std::min(1.0, white / base_cost) : 0.0;

@@ -43,6 +43,7 @@ struct FitReport {
     double gap = 0.0;                         // aggregate held-out gap sqrt(mean nrmse^2)
     double shrink = 0.0;                      // 1 - gap / gap_before
     double score = 0.0;                       // shrink - penalty * fitted parameters
+    double fit_cost = 0.0;                    // the fit's cost on the fit rows (least squares, 1/2 sum r^2)
     int fitted_params = 0;
     std::string solver;                       // Ceres BriefReport of the winning start
     std::vector<std::vector<double>> band_nrmse;  // per band, per output, held-out
@@ -99,7 +100,9 @@ struct GapResult {
         // left than that), "unexplained" (none, yet the gap is above the
         // stated noise floor: no candidate accounts for it), "no_candidate"
         // (none without gap.noise: the tool cannot tell noise from an effect
-        // outside its list); `explanation` says it in a sentence with figures.
+        // outside its list), "fit_part_only" (the start is stated and only
+        // the fit rows show the effect: kFitPartShare); `explanation` says
+        // it in a sentence with figures.
         std::string status, explanation;
     } confidence;
     // gap.noise: the aggregate gap the sensors' noise alone leaves (the
@@ -111,6 +114,9 @@ struct GapResult {
     // noise_floor_outputs: the floor per compared output (empty: no noise).
     double noise_floor = 0.0, noise_floor_limit = 0.0;
     std::vector<double> noise_floor_outputs;
+    // The nominal's cost on the fit rows and the cost its residual's white
+    // level alone gives there (which.cpp; the fit-part evidence, how_far.cpp).
+    double fit_cost_nominal = 0.0, fit_cost_white = 0.0;
     // Single candidates fitted a second time by continuation in record
     // length (docs/gap.md "Continuation in record length").
     size_t continued = 0;
@@ -127,6 +133,13 @@ struct GapResult {
 // A gap within this factor of the noise floor (GapResult::noise_floor) is
 // `none`: what an effect could add is below sqrt(1.1^2 - 1) = 0.46 of the noise.
 constexpr double kNoiseFloorFactor = 1.1;
+
+// A record whose document states its start (gap.initial_state at_rest or
+// given) and whose held-out rows leave no candidate a finding: a candidate
+// removing at least this share of the fit rows' structured misfit (the
+// nominal's cost above its white level), without worsening the held-out
+// rows, is the verdict, status "fit_part_only" (how_far.cpp).
+constexpr double kFitPartShare = 0.8;
 
 // Without gap.noise a verdict that removes less than this share of the
 // held-out gap is "partly_explained" (GapResult::Confidence::status).
