@@ -141,6 +141,7 @@ Coupling read_one(const json& cp, const Eigen::MatrixXd& A, const Eigen::MatrixX
     }
     if (Ac.size() != 0) {
         // A continuous plant's torque column is discretised with it (zero-order hold).
+        c.torque_c = t;
         Eigen::MatrixXd Ad, Bd;
         zoh(Ac, t, Ts, Ad, Bd);
         t = Bd.col(0);

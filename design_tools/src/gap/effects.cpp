@@ -414,7 +414,8 @@ const std::vector<EffectDescriptor>& catalog()
          }},
         {Effect::mode_shift, "mode_shift",
          "one resonant mode of the nominal plant at f' and zeta' instead of its own (a stiffness and damping change "
-         "at fixed modal mass: the force's and the sensors' maps of the mode's displacement and rate kept)", false, {Site::mode},
+         "at fixed modal mass: the force's and the sensors' maps of the mode's displacement and rate kept; or, where a declared "
+         "coupling's spring moves the mode, that spring's own stiffness and damping change)", false, {Site::mode},
          "a frequency sweep through the mode (the frequency and the width of its peak); a mode at the nominal's own "
          "frequency that is missing from the record's spectrum, or a new peak beside it, tells an added mode apart",
          [](const std::vector<std::string>&, const Units&, Site) {
@@ -450,8 +451,11 @@ const std::vector<EffectDescriptor>& catalog()
          [](const std::vector<double>& p, Site, const ReplaySetup& s, ReplayTerms& t) {
              if (t.coupling < 0 || size_t(t.coupling) >= s.plant_modes.size())
                  throw std::logic_error("mode_shift: no resonant plant mode " + std::to_string(t.coupling));
-             shift_plant_mode(s.plant_modes[size_t(t.coupling)], s.model->Ts, p[0], p[1], s.model->A, s.model->B,
-                              s.model->force_input, t.A, t.B);
+             const PlantMode& pm = s.plant_modes[size_t(t.coupling)];
+             if (pm.coupling >= 0)
+                 shift_coupling_mode(pm, *s.model, p[0], p[1], t.A, t.B);
+             else
+                 shift_plant_mode(pm, s.model->Ts, p[0], p[1], s.model->A, s.model->B, s.model->force_input, t.A, t.B);
          }},
     };
     return v;

@@ -45,7 +45,65 @@ std::vector<PlantMode> resonant_plant_modes(const NominalModel& m)
         out.push_back(pm);
     }
     std::sort(out.begin(), out.end(), [](const PlantMode& a, const PlantMode& b) { return a.f_hz < b.f_hz; });
+    // The coupling variants: a continuous plant (A = e^{Ac Ts}, same states)
+    // and a coupling with its continuous torque column. The mode's continuous
+    // eigenvalue lambda (nearest log(z)/Ts) and eigenvectors of Ac give the
+    // spring's first-order share d lambda/d k = (wc torque_c)(twist vc)/(wc vc).
+    if (m.Ac.rows() != n || m.Bc.rows() != n || m.couplings.empty()) return out;
+    const Eigen::ComplexEigenSolver<Eigen::MatrixXcd> cr(m.Ac.cast<std::complex<double>>());
+    const Eigen::ComplexEigenSolver<Eigen::MatrixXcd> cl(m.Ac.transpose().cast<std::complex<double>>());
+    if (cr.info() != Eigen::Success || cl.info() != Eigen::Success) return out;
+    const size_t nmodal = out.size();
+    for (size_t im = 0; im < nmodal; ++im) {
+        const std::complex<double> s = std::log(out[im].z) / m.Ts;
+        Eigen::Index ir = 0, il = 0;
+        for (Eigen::Index j = 1; j < n; ++j) {
+            if (std::abs(cr.eigenvalues()(j) - s) < std::abs(cr.eigenvalues()(ir) - s)) ir = j;
+            if (std::abs(cl.eigenvalues()(j) - s) < std::abs(cl.eigenvalues()(il) - s)) il = j;
+        }
+        const std::complex<double> lam = cr.eigenvalues()(ir);
+        if (std::abs(lam - s) > 1e-6 * std::abs(s)) continue;  // not the hold of Ac's eigenvalue
+        const Eigen::VectorXcd vc = cr.eigenvectors().col(ir);
+        const Eigen::RowVectorXcd wc = cl.eigenvectors().col(il).transpose();
+        const std::complex<double> wv = wc * vc;
+        if (!(std::abs(wv) > 1e-12 * wc.norm() * vc.norm())) continue;
+        for (size_t ic = 0; ic < m.couplings.size(); ++ic) {
+            const Coupling& cp = m.couplings[ic];
+            if (cp.torque_c.size() != n || cp.twist.size() != n) continue;
+            const std::complex<double> dl =
+                (wc * cp.torque_c.cast<std::complex<double>>())(0) * (cp.twist.cast<std::complex<double>>() * vc)(0) / wv;
+            if (!(std::abs(dl) * cp.stiffness / std::abs(lam) >= kCouplingModeShare / 2)) continue;
+            PlantMode pm = out[im];
+            pm.coupling = int(ic);
+            pm.via = cp.name;
+            out.push_back(pm);
+        }
+    }
     return out;
+}
+
+void shift_coupling_mode(const PlantMode& pm, const NominalModel& m, double f_hz, double zeta, Eigen::MatrixXd& A2,
+                         Eigen::MatrixXd& B2)
+{
+    using cd = std::complex<double>;
+    const Coupling& cp = m.couplings.at(size_t(pm.coupling));
+    const Eigen::Index n = m.Ac.rows();
+    const double w = 2 * M_PI * f_hz;
+    const cd s2(-zeta * w, w * std::sqrt(std::max(0.0, 1 - zeta * zeta)));
+    // h = twist (s' I - Ac)^-1 torque_c; the rate term's h_c = s' h - twist torque_c.
+    const Eigen::MatrixXcd M = s2 * Eigen::MatrixXcd::Identity(n, n) - m.Ac.cast<cd>();
+    const Eigen::VectorXcd g = M.partialPivLu().solve(cp.torque_c.cast<cd>());
+    const cd h = (cp.twist.cast<cd>() * g)(0);
+    const cd hc = s2 * h - cp.twist.dot(cp.torque_c);
+    // dk Re h + dc Re hc = 1, dk Im h + dc Im hc = 0.
+    const double det = h.real() * hc.imag() - hc.real() * h.imag();
+    if (!std::isfinite(det) || !(std::fabs(det) > 1e-12 * std::abs(h) * std::abs(hc))) {
+        shift_plant_mode(pm, m.Ts, f_hz, zeta, m.A, m.B, m.force_input, A2, B2);
+        return;
+    }
+    const double dk = hc.imag() / det, dc = -h.imag() / det;
+    const Eigen::MatrixXd Ac2 = m.Ac + cp.torque_c * (dk * cp.twist + dc * (cp.twist * m.Ac));
+    zoh(Ac2, m.Bc, m.Ts, A2, B2);
 }
 
 void shift_plant_mode(const PlantMode& pm, double Ts, double f_hz, double zeta, const Eigen::MatrixXd& A,
@@ -111,7 +169,7 @@ std::string plant_mode_name(const PlantMode& pm)
 {
     char b[80];
     std::snprintf(b, sizeof b, "mode at %.4g Hz, zeta %.3g", pm.f_hz, pm.zeta);
-    return b;
+    return pm.coupling >= 0 ? std::string(b) + ", by the coupling '" + pm.via + "'" : std::string(b);
 }
 
 }  // namespace gap

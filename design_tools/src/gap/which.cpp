@@ -314,7 +314,10 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
         for (size_t i = 0; i < list.size(); ++i) {
             const FitReport& f = report_of(list[i]);
             if (f.effects.size() != 1) continue;
-            if (f.effects[0].kind == contained) ic = int(i);
+            // A mode in a sensor's reading moves no plant mode: mode_shift
+            // does not contain it, the two rank by their scores.
+            if (f.effects[0].kind == contained && !(contained == Effect::unmodelled_mode && f.effects[0].site == Site::sensor))
+                ic = int(i);
             if (f.effects[0].kind == container) is = int(i);
         }
         if (ic < 0 || is < 0) return;

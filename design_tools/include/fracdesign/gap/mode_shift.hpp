@@ -18,6 +18,7 @@
 #pragma once
 #include <Eigen/Dense>
 #include <complex>
+#include <string>
 #include <vector>
 
 #include "fracdesign/gap/nominal.hpp"
@@ -30,12 +31,23 @@ struct PlantMode {
     std::complex<double> z;        // discrete eigenvalue (Im z > 0)
     Eigen::VectorXcd v;            // right eigenvector
     Eigen::RowVectorXcd w;         // left eigenvector, w v = 1
+    // -1: the mode moved at fixed modal mass (shift_plant_mode). Else the
+    // index of the declared coupling whose spring moves it: the shift is that
+    // spring's stiffness and damping change (shift_coupling_mode), named `via`.
+    int coupling = -1;
+    std::string via;
 };
 
 // The resonant modes of the open-loop plant A (not the loop's): simple
 // complex pairs with zeta < 1/sqrt(2) and f <= 0.4/Ts (the band the where
 // stage checks, diagnosis.cpp ModeCheck), slowest first. A pair closer than
 // 1e-6 |z| to another eigenvalue is left out (its projector is ill-defined).
+// Then, on a continuous plant, the same mode once more per declared coupling
+// that moves it (coupling >= 0): one whose spring holds at least
+// kCouplingModeShare of the mode's w^2 (first-order sensitivity
+// |d lambda / d k| k / |lambda| >= kCouplingModeShare / 2, 1/2 for the mode of
+// a lone spring).
+constexpr double kCouplingModeShare = 0.1;
 std::vector<PlantMode> resonant_plant_modes(const NominalModel& m);
 
 // A' and B' of the plant with mode `pm` moved to f_hz, zeta, as a stiffness
@@ -50,6 +62,24 @@ std::vector<PlantMode> resonant_plant_modes(const NominalModel& m);
 // stays; C and D are unchanged.
 void shift_plant_mode(const PlantMode& pm, double Ts, double f_hz, double zeta, const Eigen::MatrixXd& A,
                       const Eigen::MatrixXd& B, int force_input, Eigen::MatrixXd& A2, Eigen::MatrixXd& B2);
+
+// A' and B' of the plant with mode `pm` (pm.coupling >= 0) moved to
+// f_hz, zeta by the declared spring's own change: the coupling's extra
+// torque dk q + dc q' (q = twist x, q' = twist Ac x, the deflection's rate
+// of a position-level twist) in the continuous plant,
+//   Ac' = Ac + torque_c (dk twist + dc twist Ac),   Bc kept,
+// with (dk, dc) the one real pair that puts an eigenvalue at
+// s' = -zeta w' + i w' sqrt(1 - zeta^2): a rank-one change has
+// det(s' - Ac') = det(s' - Ac) (1 - r (s' - Ac)^-1 torque_c), so with
+// h = twist (s' - Ac)^-1 torque_c, dk h + dc (s' h - twist torque_c) = 1, two
+// real equations. A', B' are Ac', Bc held (zero-order hold) at Ts. Exact for
+// a spring that softens or stiffens (belt tension, a worn gear) whatever the
+// plant's damping: the other modes and the rigid body move as the physics
+// moves them, where shift_plant_mode keeps them. Falls back to
+// shift_plant_mode where the pair is not determined (h and its rate term
+// parallel at s').
+void shift_coupling_mode(const PlantMode& pm, const NominalModel& m, double f_hz, double zeta, Eigen::MatrixXd& A2,
+                         Eigen::MatrixXd& B2);
 
 // How the report names the mode: "mode at 12.3 Hz, zeta 0.021".
 std::string plant_mode_name(const PlantMode& pm);

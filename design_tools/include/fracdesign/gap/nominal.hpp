@@ -68,6 +68,7 @@ struct Coupling {
     std::string unit;          // unit of the deflection (gap.coupling.unit; empty: not given)
     Eigen::RowVectorXd twist;  // 1 x n, deflection from the plant state
     Eigen::VectorXd torque;    // n, discrete at Ts: the state change per unit of extra spring torque over one sample
+    Eigen::VectorXd torque_c;  // n, the continuous plant's column of the torque (empty for a discrete plant)
     double stiffness = 0.0;    // nominal spring rate, torque per unit deflection
     std::vector<int> states;   // S: the sub-stepped block (twist and torque vanish outside it)
     int substeps = 8;          // m
