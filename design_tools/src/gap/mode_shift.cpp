@@ -10,13 +10,41 @@
 namespace fracdesign {
 namespace gap {
 
+namespace {
+
+using Solver = Eigen::ComplexEigenSolver<Eigen::MatrixXcd>;
+
+// The index of the eigenvalue of `ev` nearest t.
+Eigen::Index nearest(const Eigen::VectorXcd& ev, std::complex<double> t)
+{
+    Eigen::Index k = 0;
+    for (Eigen::Index j = 1; j < ev.size(); ++j)
+        if (std::abs(ev(j) - t) < std::abs(ev(k) - t)) k = j;
+    return k;
+}
+
+// The right eigenvector v of eigenvalue i of `right` and the left one w (the
+// eigenvector of the transpose, `left`, at the same eigenvalue) scaled to
+// w v = 1; false where w v vanishes (a projector that is ill-defined).
+bool eigen_pair(const Solver& right, const Solver& left, Eigen::Index i, Eigen::VectorXcd& v, Eigen::RowVectorXcd& w)
+{
+    v = right.eigenvectors().col(i);
+    w = left.eigenvectors().col(nearest(left.eigenvalues(), right.eigenvalues()(i))).transpose();
+    const std::complex<double> wv = w * v;
+    if (!(std::abs(wv) > 1e-12 * w.norm() * v.norm())) return false;
+    w /= wv;
+    return true;
+}
+
+}  // namespace
+
 std::vector<PlantMode> resonant_plant_modes(const NominalModel& m)
 {
     std::vector<PlantMode> out;
     const Eigen::Index n = m.A.rows();
     if (n == 0 || !m.A.allFinite()) return out;
-    const Eigen::ComplexEigenSolver<Eigen::MatrixXcd> right(m.A.cast<std::complex<double>>());
-    const Eigen::ComplexEigenSolver<Eigen::MatrixXcd> left(m.A.transpose().cast<std::complex<double>>());
+    const Solver right(m.A.cast<std::complex<double>>());
+    const Solver left(m.A.transpose().cast<std::complex<double>>());
     if (right.info() != Eigen::Success || left.info() != Eigen::Success) return out;
     const Eigen::VectorXcd& ev = right.eigenvalues();
     for (Eigen::Index i = 0; i < n; ++i) {
@@ -29,49 +57,36 @@ std::vector<PlantMode> resonant_plant_modes(const NominalModel& m)
         const std::complex<double> s = std::log(z) / m.Ts;
         const double wn = std::abs(s), zeta = -s.real() / wn, f = wn / (2 * M_PI);
         if (!(zeta < M_SQRT1_2) || f > 0.4 / m.Ts) continue;
-        // The left eigenvector: the eigenvector of A^T at the same eigenvalue.
-        Eigen::Index jl = 0;
-        for (Eigen::Index j = 1; j < n; ++j)
-            if (std::abs(left.eigenvalues()(j) - z) < std::abs(left.eigenvalues()(jl) - z)) jl = j;
         PlantMode pm;
         pm.f_hz = f;
         pm.zeta = zeta;
         pm.z = z;
-        pm.v = right.eigenvectors().col(i);
-        pm.w = left.eigenvectors().col(jl).transpose();
-        const std::complex<double> wv = pm.w * pm.v;
-        if (!(std::abs(wv) > 1e-12 * pm.w.norm() * pm.v.norm())) continue;
-        pm.w /= wv;
+        if (!eigen_pair(right, left, i, pm.v, pm.w)) continue;
         out.push_back(pm);
     }
     std::sort(out.begin(), out.end(), [](const PlantMode& a, const PlantMode& b) { return a.f_hz < b.f_hz; });
     // The coupling variants: a continuous plant (A = e^{Ac Ts}, same states)
     // and a coupling with its continuous torque column. The mode's continuous
     // eigenvalue lambda (nearest log(z)/Ts) and eigenvectors of Ac give the
-    // spring's first-order share d lambda/d k = (wc torque_c)(twist vc)/(wc vc).
+    // spring's first-order share d lambda/d k = (wc torque_c)(twist vc), wc vc = 1.
     if (m.Ac.rows() != n || m.Bc.rows() != n || m.couplings.empty()) return out;
-    const Eigen::ComplexEigenSolver<Eigen::MatrixXcd> cr(m.Ac.cast<std::complex<double>>());
-    const Eigen::ComplexEigenSolver<Eigen::MatrixXcd> cl(m.Ac.transpose().cast<std::complex<double>>());
+    const Solver cr(m.Ac.cast<std::complex<double>>());
+    const Solver cl(m.Ac.transpose().cast<std::complex<double>>());
     if (cr.info() != Eigen::Success || cl.info() != Eigen::Success) return out;
     const size_t nmodal = out.size();
     for (size_t im = 0; im < nmodal; ++im) {
         const std::complex<double> s = std::log(out[im].z) / m.Ts;
-        Eigen::Index ir = 0, il = 0;
-        for (Eigen::Index j = 1; j < n; ++j) {
-            if (std::abs(cr.eigenvalues()(j) - s) < std::abs(cr.eigenvalues()(ir) - s)) ir = j;
-            if (std::abs(cl.eigenvalues()(j) - s) < std::abs(cl.eigenvalues()(il) - s)) il = j;
-        }
+        const Eigen::Index ir = nearest(cr.eigenvalues(), s);
         const std::complex<double> lam = cr.eigenvalues()(ir);
         if (std::abs(lam - s) > 1e-6 * std::abs(s)) continue;  // not the hold of Ac's eigenvalue
-        const Eigen::VectorXcd vc = cr.eigenvectors().col(ir);
-        const Eigen::RowVectorXcd wc = cl.eigenvectors().col(il).transpose();
-        const std::complex<double> wv = wc * vc;
-        if (!(std::abs(wv) > 1e-12 * wc.norm() * vc.norm())) continue;
+        Eigen::VectorXcd vc;
+        Eigen::RowVectorXcd wc;
+        if (!eigen_pair(cr, cl, ir, vc, wc)) continue;
         for (size_t ic = 0; ic < m.couplings.size(); ++ic) {
             const Coupling& cp = m.couplings[ic];
             if (cp.torque_c.size() != n || cp.twist.size() != n) continue;
             const std::complex<double> dl =
-                (wc * cp.torque_c.cast<std::complex<double>>())(0) * (cp.twist.cast<std::complex<double>>() * vc)(0) / wv;
+                (wc * cp.torque_c.cast<std::complex<double>>())(0) * (cp.twist.cast<std::complex<double>>() * vc)(0);
             if (!(std::abs(dl) * cp.stiffness / std::abs(lam) >= kCouplingModeShare / 2)) continue;
             PlantMode pm = out[im];
             pm.coupling = int(ic);
