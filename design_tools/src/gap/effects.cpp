@@ -534,7 +534,7 @@ std::string site_phrase(const std::string& effect, const std::string& site, cons
     return "";
 }
 
-std::vector<std::pair<Site, int>> effect_sites(Effect e, const NominalModel& m, size_t compared_outputs)
+std::vector<std::pair<Site, int>> effect_sites(Effect e, const NominalModel& m, size_t compared_outputs, size_t plant_modes)
 {
     std::vector<std::pair<Site, int>> v;
     for (Site s : descriptor(e).sites) {
@@ -543,7 +543,7 @@ std::vector<std::pair<Site, int>> effect_sites(Effect e, const NominalModel& m, 
         else if (s == Site::sensor)
             for (size_t i = 0; i < compared_outputs; ++i) v.push_back({s, int(i)});
         else if (s == Site::mode)
-            for (size_t i = 0, n = resonant_plant_modes(m).size(); i < n; ++i) v.push_back({s, int(i)});
+            for (size_t i = 0; i < plant_modes; ++i) v.push_back({s, int(i)});
         else
             v.push_back({s, 0});
     }

@@ -47,7 +47,7 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
         // force input, the outputs, each declared coupling): each variant is
         // fitted, the one with the better score is the effect's candidate.
         std::vector<EffectSetup> variants;
-        for (const std::pair<Site, int>& site : effect_sites(e, model, B.outs.size())) {
+        for (const std::pair<Site, int>& site : effect_sites(e, model, B.outs.size(), B.fit_setup.plant_modes.size())) {
             if (site.first == Site::coupling) {
                 const Coupling& cp = model.couplings[size_t(site.second)];
                 if (!(coupling_Sq[size_t(site.second)] > 0)) {

@@ -198,8 +198,9 @@ bool coupling_capable(Effect e);
 // Parameter names of an effect at a site; `outputs` are the compared outputs (per-channel parameters).
 std::vector<std::string> param_names(Effect e, const std::vector<std::string>& outputs, Site site = Site::force_input);
 // The sites the diagnosis tries for an effect on this model (coupling: once per declared coupling;
-// mode: once per resonant plant mode, resonant_plant_modes; sensor: once per compared output).
-std::vector<std::pair<Site, int>> effect_sites(Effect e, const NominalModel& m, size_t compared_outputs);
+// mode: once per entry of resonant_plant_modes, `plant_modes` of them (ReplaySetup::plant_modes);
+// sensor: once per compared output).
+std::vector<std::pair<Site, int>> effect_sites(Effect e, const NominalModel& m, size_t compared_outputs, size_t plant_modes);
 // `u` with the deflection unit of coupling `coupling`.
 Units units_at(const Units& u, int coupling);
 // Units of the model's signals as the replay's parameters see them.
