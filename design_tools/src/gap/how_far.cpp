@@ -76,10 +76,25 @@ GapResult::Confidence confidence_of(const std::vector<FitReport>& candidates, co
 // finding when the document states the noise it is compared with.
 // `at_noise_floor`: the stated noise's limit holds the nominal's held-out gap
 // (how_far decides it once, before the selection it skips).
-void verdict_status(GapResult& R, double margin, bool at_noise_floor)
+// `fit_part_share` > 0: the verdict was taken from the fit rows (how_far,
+// kFitPartShare) and removes that share of their structured misfit; the
+// status is fit_part_only.
+void verdict_status(GapResult& R, double margin, bool at_noise_floor, double fit_part_share)
 {
     GapResult::Confidence& c = R.confidence;
-    char b[512];
+    char b[640];
+    if (fit_part_share > 0) {
+        c.status = "fit_part_only";
+        std::snprintf(b, sizeof b,
+                      "the held-out gap %.4g leaves no candidate a finding, but on the fit rows, from the start the document "
+                      "states, %s removes %.1f %% of the nominal's misfit above its white level (that misfit %.3g x the white "
+                      "level); the held-out rows hold no trace of it to confirm it: record a second run from the same start "
+                      "and give it as --validate",
+                      R.gap_before_total, effect_name(R.verdict.effects[0].kind).c_str(), 100 * fit_part_share,
+                      R.fit_cost_nominal / R.fit_cost_white);
+        c.explanation = b;
+        return;
+    }
     const bool noise = R.noise_floor > 0;
     const double ratio = noise ? R.gap_before_total / R.noise_floor : 0.0;
     if (R.verdict.effects.empty()) {
@@ -246,7 +261,7 @@ void how_far(const std::vector<std::pair<FitReport, EffectSetup>>& singles, cons
     // fit_part_only (verdict_status says the held-out rows cannot confirm
     // it). A fitted start absorbs such a transient: not applied; nor with a
     // validation record, whose own start is held out.
-    bool fit_part = false;
+    double fit_part_share = 0.0;  // > 0: the verdict comes from the fit rows, removing this share
     const NominalModel& model = *base_problem.setup->model;
     const double structured = R.fit_cost_nominal - R.fit_cost_white;
     if (R.verdict.effects.empty() && model.initial_state != NominalModel::Start::fitted && E.eval == base_problem.setup &&
@@ -262,24 +277,12 @@ void how_far(const std::vector<std::pair<FitReport, EffectSetup>>& singles, cons
         }
         if (pick) {
             R.verdict = *pick;
-            fit_part = true;
+            fit_part_share = best_share;
         }
     }
     added_mode_first(R.verdict);
     R.confidence = confidence_of(R.candidates, R.verdict, opt.margin);
-    verdict_status(R, opt.margin, at_noise_floor);
-    if (fit_part) {
-        char b[640];
-        std::snprintf(b, sizeof b,
-                      "the held-out gap %.4g leaves no candidate a finding, but on the fit rows, from the start the document "
-                      "states, %s removes %.1f %% of the nominal's misfit above its white level (that misfit %.3g x the white "
-                      "level); the held-out rows hold no trace of it to confirm it: record a second run from the same start "
-                      "and give it as --validate",
-                      R.gap_before_total, effect_name(R.verdict.effects[0].kind).c_str(),
-                      100 * (R.fit_cost_nominal - R.verdict.fit_cost) / structured, R.fit_cost_nominal / R.fit_cost_white);
-        R.confidence.status = "fit_part_only";
-        R.confidence.explanation = b;
-    }
+    verdict_status(R, opt.margin, at_noise_floor, fit_part_share);
 }
 
 void report_traces(const Baseline& B, const Signals& data, GapResult& R)
