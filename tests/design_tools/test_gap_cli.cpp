@@ -88,7 +88,7 @@ TEST(GapCli, writes_result_json_and_report)
     // The verdict's status is one of the documented six, with its sentence.
     const std::string st = j["verdict"]["confidence"]["status"];
     EXPECT_TRUE(st == "at_noise_floor" || st == "explained" || st == "partly_explained" || st == "unexplained" ||
-                st == "no_candidate" || st == "fit_part_only") << st;
+                st == "no_candidate" || st == "fit_part_only" || st == "beyond_noise") << st;
     EXPECT_FALSE(j["verdict"]["confidence"]["explanation"].get<std::string>().empty());
     std::ifstream html(out / "report.html");
     std::stringstream ss;

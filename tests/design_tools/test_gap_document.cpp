@@ -225,19 +225,28 @@ TEST(GapDocument, stated_noise_makes_a_gap_at_the_noise_floor_none)
     // A sensor offset of 0.37 noise std: the held-out gap is sqrt(1 + 0.37^2)
     // = 1.066 x the noise floor. Without the noise stated, the offset's fit
     // removes 6 % of the gap and is named; with it stated, that gap is at
-    // the noise floor (within 1.1 x) and the verdict is none.
+    // the noise floor (within 1.1 x): the offset is still named, but only
+    // because its improvement lies beyond what the noise gives a constant
+    // (status beyond_noise, "Effects below the noise floor"); the same
+    // record without the offset is none.
     double sd = 0;
-    Signals s = lag_record(lag_doc(), {}, 0.02, &sd);
+    const Signals clean = lag_record(lag_doc(), {}, 0.02, &sd);
+    Signals s = clean;
     s.values.col(1).array() += 0.37 * sd;
     const GapOptions o = few({Effect::sensor_offset, Effect::gain_error});
     const GapResult unstated = diagnose(nominal_from_json(lag_doc(), kTs), s, nullptr, o);
     EXPECT_EQ(first_effect(unstated), "sensor_offset");
     EXPECT_EQ(unstated.noise_floor, 0.0);
-    const GapResult stated = diagnose(nominal_from_json(lag_doc({{"noise", {{"y", sd}}}}), kTs), s, nullptr, o);
-    EXPECT_EQ(first_effect(stated), "none");
+    const NominalModel noisy = nominal_from_json(lag_doc({{"noise", {{"y", sd}}}}), kTs);
+    const GapResult stated = diagnose(noisy, s, nullptr, o);
     EXPECT_GT(stated.noise_floor, 0.0);
     EXPECT_LE(stated.gap_before_total, kNoiseFloorFactor * stated.noise_floor);
+    EXPECT_EQ(first_effect(stated), "sensor_offset");
+    EXPECT_EQ(stated.confidence.status, "beyond_noise") << stated.confidence.explanation;
     EXPECT_TRUE(result_json(stated).contains("noise_floor"));
+    const GapResult none = diagnose(noisy, clean, nullptr, o);
+    EXPECT_EQ(first_effect(none), "none");
+    EXPECT_EQ(none.confidence.status, "at_noise_floor") << none.confidence.explanation;
     // A stated noise far below the record's leaves the decision to the effects' scores.
     const GapResult quiet = diagnose(nominal_from_json(lag_doc({{"noise", {{"y", 0.1 * sd}}}}), kTs), s, nullptr, o);
     EXPECT_EQ(first_effect(quiet), "sensor_offset");

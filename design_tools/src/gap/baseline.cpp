@@ -81,10 +81,12 @@ void check_nominal_replay(const NominalModel& model, const ReplayTrace& nom, con
 // before the reading's hold, as the sensor adds it), kLoopNoiseDraws draws
 // with fixed seeds, and compared with the noise-free replay `clean`. Open
 // loop this is the stated std itself (the noise does not feed back).
+// `series`, when given, receives each draw's residual over the last range
+// (rows x compared outputs): the null draws of noise_reach (how_far.cpp).
 using RowRange = std::pair<Eigen::Index, Eigen::Index>;  // first row, count
 
 std::vector<Eigen::MatrixXd> loop_noise_draws(const NominalModel& model, const ReplaySetup& setup, const ReplayTrace& clean,
-                                              const std::vector<RowRange>& ranges)
+                                              const std::vector<RowRange>& ranges, std::vector<Eigen::MatrixXd>* series = nullptr)
 {
     Eigen::Index rows = 0;
     for (const RowRange& r : ranges) rows = std::max(rows, r.first + r.second);
@@ -105,8 +107,9 @@ std::vector<Eigen::MatrixXd> loop_noise_draws(const NominalModel& model, const R
         const ReplayTrace tr = replay(setup, {}, rows, &w);
         for (size_t r = 0; r < ranges.size(); ++r) {
             const auto [first, n] = ranges[r];
-            out[r].row(d) =
-                ((tr.y.middleRows(first, n) - clean.y.middleRows(first, n)).colwise().squaredNorm() / double(n)).cwiseSqrt();
+            const Eigen::MatrixXd res = tr.y.middleRows(first, n) - clean.y.middleRows(first, n);
+            out[r].row(d) = (res.colwise().squaredNorm() / double(n)).cwiseSqrt();
+            if (series && r + 1 == ranges.size()) series->push_back(res);
         }
     }
     for (const Eigen::MatrixXd& o : out)
@@ -199,14 +202,26 @@ Baseline baseline(const NominalModel& model, const Signals& data, const Signals*
         // Without a validation record both row ranges come from the same draws of the whole record.
         if (validate) {
             noise_sd = draws_rms(loop_noise_draws(model, B.fit_setup, nom, {{0, R.fit_samples}})[0]);
-            B.eval_noise_draws = loop_noise_draws(model, B.eval_setup_v, replay(B.eval_setup_v, {}), {{0, R.eval_samples}})[0];
+            B.eval_noise_draws = loop_noise_draws(model, B.eval_setup_v, replay(B.eval_setup_v, {}), {{0, R.eval_samples}},
+                                                  &B.eval_noise_residual)[0];
         } else {
-            const std::vector<Eigen::MatrixXd> d =
-                loop_noise_draws(model, B.fit_setup, nom, {{0, R.fit_samples}, {R.eval_first, R.eval_samples}});
+            const std::vector<Eigen::MatrixXd> d = loop_noise_draws(
+                model, B.fit_setup, nom, {{0, R.fit_samples}, {R.eval_first, R.eval_samples}}, &B.eval_noise_residual);
             noise_sd = draws_rms(d[0]);
             B.eval_noise_draws = d[1];
         }
         B.eval_noise_sd = draws_rms(B.eval_noise_draws);
+    } else if (!noise_sd.empty()) {
+        // Open loop the noise-only residual is the stated white noise itself.
+        const Eigen::Index ncmp = Eigen::Index(outs.size());
+        for (int d = 0; d < kLoopNoiseDraws; ++d) {
+            std::mt19937_64 gen(0x6e6f697365ULL + std::uint64_t(d));
+            std::normal_distribution<double> g(0.0, 1.0);
+            Eigen::MatrixXd w(R.eval_samples, ncmp);
+            for (Eigen::Index c = 0; c < ncmp; ++c)
+                for (Eigen::Index k = 0; k < R.eval_samples; ++k) w(k, c) = noise_sd[size_t(c)] * g(gen);
+            B.eval_noise_residual.push_back(w);
+        }
     }
     // Each coupling's scale (FitContext::Sq, set per site by which()).
     std::vector<double>& coupling_Sq = B.coupling_Sq;

@@ -70,6 +70,15 @@ GapResult::Confidence confidence_of(const std::vector<FitReport>& candidates, co
     return c;
 }
 
+// Every fitted parameter identified (FitReport::unidentified empty strings).
+bool identified(const FitReport& f)
+{
+    for (const auto& e : f.unidentified)
+        for (const std::string& w : e)
+            if (!w.empty()) return false;
+    return true;
+}
+
 // The verdict's status and its sentence (GapResult::Confidence::status):
 // whether the gap is the sensors' noise, explained by the verdict, only
 // partly explained, or not explained by any candidate. A `none` is only a
@@ -97,6 +106,17 @@ void verdict_status(GapResult& R, double margin, bool at_noise_floor, double fit
     }
     const bool noise = R.noise_floor > 0;
     const double ratio = noise ? R.gap_before_total / R.noise_floor : 0.0;
+    if (at_noise_floor && !R.verdict.effects.empty()) {
+        c.status = "beyond_noise";
+        std::snprintf(b, sizeof b,
+                      "the held-out gap %.4g is within the stated sensor noise's limit %.4g (%.2f x the noise floor %.4g), "
+                      "yet %s improves it %.3g standard deviations beyond what the noise alone gives the same change of "
+                      "prediction (a finding from %.3g): an effect smaller than the noise, with a structure the noise does not hold",
+                      R.gap_before_total, R.noise_floor_limit, ratio, R.noise_floor,
+                      effect_name(R.verdict.effects[0].kind).c_str(), c.noise_reach, kNoiseReach);
+        c.explanation = b;
+        return;
+    }
     if (R.verdict.effects.empty()) {
         if (at_noise_floor) {
             c.status = "at_noise_floor";
@@ -150,6 +170,45 @@ bool overlaps(const std::vector<EffectSetup>& set, Effect e)
 
 }  // namespace
 
+// How far a candidate's held-out improvement lies beyond what the sensors'
+// noise alone gives the same change of prediction, in standard deviations of
+// a new draw (GapResult::Confidence::noise_reach; NaN without noise draws).
+// With r0 = y - yhat_nominal and d = yhat_candidate - yhat_nominal on the
+// held-out rows, and <a, b> the aggregate gap's weighted energy
+// (sum over outputs of weight/scale^2 sum_t a b: each output in units of its
+// noise), the record's improvement is |r0|^2 - |r0 - d|^2; a record of the
+// exact nominal, whose residual is a draw n_k of the noise alone
+// (Baseline::eval_noise_residual: in a closed loop with the motion it makes
+// through the controller), would give 2<n_k, d> - |d|^2. The reach is the
+// record's improvement less the draws' mean, over their std s times
+// sqrt(1 + 1/n) (the prediction bound of a new draw). A fitted offset that
+// follows the loop's slow noise motion reaches about as far as the noise
+// does (0.4-2.5 on the outside set's effect-free twins); a structure the
+// noise does not hold (a quantizer's rounding, a gain error) reaches further
+// (docs/gap.md "Effects below the noise floor").
+double noise_reach(const Evaluator& E, const FitReport& f)
+{
+    if (!E.noise_residual || E.noise_residual->size() < 2) return kNaN;
+    const Eigen::MatrixXd y0 = E.simulate({}), y1 = E.simulate(f.effects);
+    const Eigen::MatrixXd r0 = E.y_eval - y0, d = y1 - y0;
+    Eigen::VectorXd w(d.cols());
+    for (Eigen::Index c = 0; c < d.cols(); ++c) {
+        const double sc = E.scale[size_t(c)];
+        w(c) = (size_t(c) < E.weight.size() ? E.weight[size_t(c)] : 1.0) / (sc * sc);
+    }
+    auto energy = [&](const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+        return (a.cwiseProduct(b).colwise().sum().transpose().array() * w.array()).sum();
+    };
+    const double dd = energy(d, d);
+    const double observed = 2 * energy(r0, d) - dd;
+    const Eigen::Index n = Eigen::Index(E.noise_residual->size());
+    Eigen::VectorXd null(n);
+    for (Eigen::Index k = 0; k < n; ++k) null(k) = 2 * energy((*E.noise_residual)[size_t(k)], d) - dd;
+    const double s = std::sqrt((null.array() - null.mean()).square().sum() / double(n - 1));
+    if (!(s > 0) || !std::isfinite(observed)) return kNaN;
+    return (observed - null.mean()) / (s * std::sqrt(1.0 + 1.0 / double(n)));
+}
+
 Evaluator held_out(const Baseline& B, const Signals& data, GapResult& R)
 {
     const std::vector<std::string>& outs = B.outs;
@@ -196,6 +255,7 @@ Evaluator held_out(const Baseline& B, const Signals& data, GapResult& R)
             R.noise_floor_limit = std::max(R.noise_floor_limit, g.mean() + kT99 * std::sqrt(1.0 + 1.0 / n) * spread);
         }
     }
+    if (!B.eval_noise_residual.empty()) E.noise_residual = &B.eval_noise_residual;
     R.gap_before_total = total_gap(R.gap_before, E.weight);
     E.gap_before = R.gap_before_total;
     R.band_nrmse_before = band_nrmse(yeval, yhat_nom, data.Ts, E.scale);
@@ -209,6 +269,15 @@ void how_far(const std::vector<std::pair<FitReport, EffectSetup>>& singles, cons
     // held-out gap shrinks by at least `margin` (relative) and the penalized score grows.
     R.verdict = none_candidate(R);
     const bool at_noise_floor = R.noise_floor > 0 && R.gap_before_total <= R.noise_floor_limit;
+    // At the noise floor the best single candidate is still the verdict
+    // (status beyond_noise) when it is a finding by score, every parameter
+    // identified, and its improvement reaches kNoiseReach beyond the noise's.
+    double reach = kNaN;
+    if (at_noise_floor && !singles.empty() && !singles.front().first.effects.empty() &&
+        singles.front().first.score >= opt.margin && identified(singles.front().first)) {
+        reach = noise_reach(E, singles.front().first);
+        if (reach >= kNoiseReach) R.verdict = singles.front().first;
+    }
     if (!at_noise_floor && !singles.empty() && singles.front().first.score >= opt.margin) {
         FitProblem cur = base_problem;
         cur.effects = {singles.front().second};
@@ -282,6 +351,7 @@ void how_far(const std::vector<std::pair<FitReport, EffectSetup>>& singles, cons
     }
     added_mode_first(R.verdict);
     R.confidence = confidence_of(R.candidates, R.verdict, opt.margin);
+    R.confidence.noise_reach = reach;
     verdict_status(R, opt.margin, at_noise_floor, fit_part_share);
 }
 

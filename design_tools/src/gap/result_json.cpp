@@ -102,7 +102,8 @@ nlohmann::json result_json(const GapResult& R)
         la.push_back({{"effect", l.effect}, {"gap_after_total", num(l.gap)}, {"experiment", l.experiment}});
     j["verdict"]["confidence"] = {{"first", R.confidence.first}, {"runner_up", R.confidence.runner_up},
                                   {"margin", num(R.confidence.margin)}, {"look_alikes", la},
-                                  {"status", R.confidence.status}, {"explanation", R.confidence.explanation}};
+                                  {"status", R.confidence.status}, {"explanation", R.confidence.explanation},
+                                  {"noise_reach", num(R.confidence.noise_reach)}};
     nlohmann::json bb = nlohmann::json::array();
     for (size_t b = 0; b < R.band_nrmse_before.size() && b < bands.size(); ++b)
         bb.push_back({{"band_hz", {bands[b].first, bands[b].second}}, {"nrmse", per_output(R.outputs, R.band_nrmse_before[b])}});

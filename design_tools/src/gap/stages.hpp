@@ -112,6 +112,9 @@ struct Evaluator {
     double Ts;
     std::vector<double> scale;  // std of each output over the whole evaluated record
     std::vector<double> weight; // channel weights of the aggregate gap (empty: equal)
+    // gap.noise: the noise-only residual's draws on these rows
+    // (Baseline::eval_noise_residual; null: none stated).
+    const std::vector<Eigen::MatrixXd>* noise_residual = nullptr;
 
     Eigen::MatrixXd simulate(const std::vector<EffectInstance>& eff) const
     {
@@ -193,6 +196,10 @@ struct Baseline {
     // kLoopNoiseDraws draws' rms per output, empty open loop).
     std::vector<double> noise_sd, eval_noise_sd;
     Eigen::MatrixXd eval_noise_draws;
+    // gap.noise: each of the kLoopNoiseDraws draws' noise-only residual on
+    // the evaluated rows (rows x compared outputs; open loop white noise of
+    // the stated std): the null draws of noise_reach (how_far.cpp).
+    std::vector<Eigen::MatrixXd> eval_noise_residual;
     ReplaySetup fit_setup, eval_setup_v;
     bool validated = false;           // a separate validation record is evaluated
     const Signals* evsig = nullptr;   // the evaluated record (validation record or the data)
@@ -235,6 +242,10 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
 // The held-out evaluator; R.gap_before, its total, the noise floor and the
 // bands before.
 Evaluator held_out(const Baseline& B, const Signals& data, GapResult& R);
+// How far f's held-out improvement lies beyond what the noise alone gives the
+// same change of prediction, in standard deviations of a new draw (NaN
+// without E.noise_residual); GapResult::Confidence::noise_reach.
+double noise_reach(const Evaluator& E, const FitReport& f);
 // How far: forward selection from the ranked singles; R.verdict, R.confidence.
 void how_far(const std::vector<std::pair<FitReport, EffectSetup>>& singles, const FitProblem& base_problem,
              const Evaluator& E, const GapOptions& opt, GapResult& R);

@@ -10,6 +10,7 @@
 #include <Eigen/Dense>
 #include <nlohmann/json.hpp>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -101,9 +102,15 @@ struct GapResult {
         // stated noise floor: no candidate accounts for it), "no_candidate"
         // (none without gap.noise: the tool cannot tell noise from an effect
         // outside its list), "fit_part_only" (the start is stated and only
-        // the fit rows show the effect: kFitPartShare); `explanation` says
+        // the fit rows show the effect: kFitPartShare), "beyond_noise" (the
+        // gap is within the noise floor's limit, but the verdict improves it
+        // beyond what the noise can: kNoiseReach); `explanation` says
         // it in a sentence with figures.
         std::string status, explanation;
+        // At the noise floor: how far the best candidate's held-out
+        // improvement lies beyond the noise's (how_far.cpp noise_reach), in
+        // standard deviations; NaN where not tested.
+        double noise_reach = std::numeric_limits<double>::quiet_NaN();
     } confidence;
     // gap.noise: the aggregate gap the sensors' noise alone leaves (the
     // held-out nrmse of a perfect model; in a closed loop with the motion the
@@ -133,6 +140,16 @@ struct GapResult {
 // A gap within this factor of the noise floor (GapResult::noise_floor) is
 // `none`: what an effect could add is below sqrt(1.1^2 - 1) = 0.46 of the noise.
 constexpr double kNoiseFloorFactor = 1.1;
+
+// A record whose gap lies within the noise floor's limit still has a finding
+// when the best single candidate (score >= margin, every parameter
+// identified) improves the held-out gap beyond what the noise alone gives
+// the same change of prediction by this many standard deviations of a new
+// draw (status "beyond_noise", how_far.cpp noise_reach): Student's t at one-
+// sided 99.9 % for the 7 degrees of freedom of the 8 noise draws, 4.785,
+// times sqrt(1 + 1/8); the stricter level pays for choosing the best of the
+// candidates.
+constexpr double kNoiseReach = 5.075;
 
 // A record whose document states its start (gap.initial_state at_rest or
 // given) and whose held-out rows leave no candidate a finding: a candidate
