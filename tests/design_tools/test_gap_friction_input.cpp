@@ -5,6 +5,9 @@
 // straight on the mass; parameters are the test's own.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <random>
+
 #include "fracdesign/gap/diagnosis.hpp"
 #include "gap_drive.hpp"
 
@@ -73,4 +76,38 @@ TEST(GapFrictionInput, an_input_the_model_lacks_is_refused_naming_the_field)
                   std::string::npos)
             << e.what();
     }
+}
+
+// The friction's scale (FitContext::Sf, where.cpp friction_scale): the drive
+// u reaches the mass through an actuator of DC gain 1e-4 (u in units 10^4 x
+// smaller than f's), so a friction of 2 % of the force the drive's rms
+// command makes is 2e-6 rms(u) in numbers. Started in rms(u) (1/1024 ..
+// 1/2), the smallest level is above any force the actuator makes: the mass
+// never moves, the cost is flat, and gain_error was named; started in the
+// friction input's own scale the friction is found.
+TEST(GapFrictionInput, friction_in_the_friction_inputs_units_is_found_whatever_the_drives_units)
+{
+    const double kGain = 1e-4;
+    nlohmann::json d = doc({{"velocity", "v"}, {"force_input", "u"}, {"friction_input", "f"},
+                            {"initial_state", {{"given", {0, 0, 0}}}}});
+    d["B"][2][0] = 50.0 * kGain;
+    Signals s = multisine_record({"u", "q", "v"}, kTs, 4000, {{3.0 / kGain, 0.37, 0.1}, {1.5 / kGain, 1.3, 0.9}});
+    const NominalModel m = nominal_from_json(d, kTs);
+    double su = 0;
+    for (Eigen::Index k = 0; k < s.samples(); ++k) su += s.values(k, 0) * s.values(k, 0);
+    su = std::sqrt(su / double(s.samples()));
+    const double Fc = 0.02 * kGain * su;  // the actuator's DC gain is kGain; 2 % of its rms force
+    const ReplayTrace tr = replay(make_replay_setup(m, s, {"u", "f"}, {"q", "v"}), {{Effect::coulomb_friction, {Fc, 0.0}}});
+    std::mt19937 rng(3);
+    std::normal_distribution<double> n01(0.0, 1.0);
+    for (Eigen::Index k = 0; k < s.samples(); ++k) {
+        s.values(k, 1) = tr.y(k, 0) + 1e-5 * n01(rng);
+        s.values(k, 2) = tr.y(k, 1) + 1e-4 * n01(rng);
+    }
+    GapOptions o;
+    o.effects = {Effect::coulomb_friction, Effect::viscous_friction, Effect::gain_error};
+    const GapResult r = diagnose(m, s, nullptr, o);
+    ASSERT_FALSE(r.verdict.effects.empty()) << r.confidence.explanation;
+    ASSERT_EQ(effect_name(r.verdict.effects[0].kind), "coulomb_friction") << r.confidence.explanation;
+    EXPECT_NEAR(r.verdict.effects[0].params[0], Fc, 0.05 * Fc);
 }

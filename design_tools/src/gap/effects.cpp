@@ -140,7 +140,7 @@ const std::vector<EffectDescriptor>& catalog()
          },
          [](const FitContext& c, Site) {
              return EffectSetup{Effect::coulomb_friction, Site::force_input, 0,
-                                {{c.Su, 0, kBig, false}, {c.Su, -kBig, kBig, false}}, {{0.05, 0.0}, {0.3, 0.0}}, false};
+                                {{c.Sf, 0, kBig, false}, {c.Sf, -kBig, kBig, false}}, {{0.05, 0.0}, {0.3, 0.0}}, false};
          },
          [](const std::vector<double>& p, Site, const ReplaySetup&, ReplayTerms& t) {
              t.Fc = p[0];
@@ -152,7 +152,7 @@ const std::vector<EffectDescriptor>& catalog()
          // offset, fitted to the fit rows, replayed the held-out rows worse.
          [](const FitContext& c, Site) {
              EffectSetup s{Effect::coulomb_friction, Site::force_input, 0,
-                           {{c.Su, 0, kBig, false}, {c.Su, 0, 0, true}}, {{0.05, 0.0}, {0.3, 0.0}}, false};
+                           {{c.Sf, 0, kBig, false}, {c.Sf, 0, 0, true}}, {{0.05, 0.0}, {0.3, 0.0}}, false};
              s.spec[1].held = true;
              return std::vector<EffectSetup>{s};
          }},
@@ -162,7 +162,7 @@ const std::vector<EffectDescriptor>& catalog()
              return std::vector<ParamInfo>{{"Fv", u.u + "/(" + u.v + ")"}};
          },
          [](const FitContext& c, Site) {
-             return EffectSetup{Effect::viscous_friction, Site::force_input, 0, {{c.Su / c.Sv, -kBig, kBig, false}}, {{0.1}}, false};
+             return EffectSetup{Effect::viscous_friction, Site::force_input, 0, {{c.Sf / c.Sv, -kBig, kBig, false}}, {{0.1}}, false};
          },
          [](const std::vector<double>& p, Site, const ReplaySetup&, ReplayTerms& t) { t.Fv = p[0]; }},
         {Effect::stribeck_friction, "stribeck_friction", "F = (Fc + (Fs - Fc) exp(-(v/vs)^2)) sgn(v)", true,
@@ -172,9 +172,9 @@ const std::vector<EffectDescriptor>& catalog()
          },
          [](const FitContext& c, Site) {
              // The cost is rough in vs (the hump only shows below it): a grid
-             // of Fc/Su x Fs/Fc x vs/Sv, screened by cost, the best 3 refined.
+             // of Fc/Sf x Fs/Fc x vs/Sv (Sf: FitContext), screened by cost, the best 3 refined.
              EffectSetup s{Effect::stribeck_friction, Site::force_input, 0,
-                           {{c.Su, 0, kBig, false}, {c.Su, 0, kBig, false}, {c.Sv, 1e-3, 1e2, false}}, {}, true};
+                           {{c.Sf, 0, kBig, false}, {c.Sf, 0, kBig, false}, {c.Sv, 1e-3, 1e2, false}}, {}, true};
              for (double fc : {0.05, 0.15, 0.4})
                  for (double ratio : {1.5, 2.5})
                      for (double vs : {0.03, 0.1, 0.3, 1.0}) s.starts.push_back({fc, fc * ratio, vs});
@@ -268,7 +268,7 @@ const std::vector<EffectDescriptor>& catalog()
                          s.starts.push_back({2 * c.kq * z / (std::pow(w0, a) * std::sin(M_PI * a / 2)) / sc, a});
                  s.screen = true;
              } else {
-                 s.spec = {{c.Su / c.Sv, -kBig, kBig, false}, {1.0, 0.05, 0.95, false}};
+                 s.spec = {{c.Sf / c.Sv, -kBig, kBig, false}, {1.0, 0.05, 0.95, false}};
                  s.starts = {{0.1, 0.3}, {0.1, 0.7}};
              }
              return s;

@@ -62,6 +62,29 @@ std::vector<Window> flag_windows(const Eigen::VectorXd& res, const ReplayTrace& 
     return out;
 }
 
+// rms(u) in the friction input's units (FitContext::Sf): a friction torque
+// at a separate input (gap.friction_input, e.g. a voltage-driven motor with
+// a disturbance-torque input) moves the machine as much as the drive's rms
+// command when it equals Su times the ratio of the velocity each input
+// gives, from rest, kFrictionScaleHorizon samples after a unit step on it
+// (the plant's open-loop matrices; the horizon lets an actuator lag, e.g.
+// a motor's electrical pole, settle into the rate). Su itself when friction
+// acts at the force input, or where either response is zero.
+constexpr int kFrictionScaleHorizon = 50;
+
+double friction_scale(const NominalModel& m, double Su)
+{
+    if (m.friction_input == m.force_input || m.velocity < 0) return Su;
+    auto velocity_after_step = [&](int input) {
+        Eigen::VectorXd x = Eigen::VectorXd::Zero(m.A.rows());
+        for (int k = 0; k < kFrictionScaleHorizon; ++k) x = m.A * x + m.B.col(input);
+        return std::fabs(m.C.row(m.velocity).dot(x));
+    };
+    const double gu = velocity_after_step(m.force_input), gf = velocity_after_step(m.friction_input);
+    const double r = gu / gf;
+    return std::isfinite(r) && r > 0 ? Su * r : Su;
+}
+
 }  // namespace
 
 FitContext fit_context(const Baseline& B, const Signals& data, const GapResult& R)
@@ -77,6 +100,7 @@ FitContext fit_context(const Baseline& B, const Signals& data, const GapResult& 
     ctx.fit_seconds = double(R.fit_samples) * data.Ts;
     ctx.Su = std::max(rms(nom.u.head(R.fit_samples)), 1e-12);
     ctx.Sv = std::max(rms(nom.v.head(R.fit_samples)), 1e-12);
+    ctx.Sf = friction_scale(*B.fit_setup.model, ctx.Su);
     ctx.umax = std::max(nom.u.head(R.fit_samples).cwiseAbs().maxCoeff(), 1e-12);
     for (size_t c = 0; c < outs.size(); ++c) {
         const Eigen::VectorXd yc = ymeas.col(Eigen::Index(c)).head(R.fit_samples);

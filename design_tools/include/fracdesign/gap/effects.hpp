@@ -116,6 +116,9 @@ struct EffectSetup {
 // The data scales that effects' bounds and starts are taken from.
 struct FitContext {
     double Ts = 0, Su = 1, Sv = 1, umax = 1, fit_seconds = 0;
+    // The friction's scale: Su in the friction input's units (gap.friction_input;
+    // Su itself when friction acts at the force input). where.cpp friction_scale.
+    double Sf = 1;
     // The coupling a set-up is for: rms nominal deflection, stiffness, slowest
     // oscillation of its block [rad/s] (0: none), index.
     double Sq = 0, kq = 0, wq = 0;
