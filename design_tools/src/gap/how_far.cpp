@@ -70,6 +70,26 @@ GapResult::Confidence confidence_of(const std::vector<FitReport>& candidates, co
     return c;
 }
 
+// A quantization the stated noise already holds: every step it fits is at
+// most kNoiseFloorFactor x the rms its output's stated noise would give a
+// uniform rounding (q / sqrt(12) <= 1.1 std). A document that states a
+// sensor's step as its noise (an encoder's truncation, the HIL rig's
+// documents) knows that quantization; naming it beyond the noise would be a
+// finding on every clean record of a quantized sensor.
+bool quantization_within_stated_noise(const FitReport& f, const FitProblem& P)
+{
+    if (f.effects.size() != 1 || f.effects[0].kind != Effect::quantization) return false;
+    const NominalModel& m = *P.setup->model;
+    const std::vector<int>& cmp = P.setup->compared;
+    const std::vector<double>& step = f.effects[0].params;
+    for (size_t c = 0; c < step.size() && c < cmp.size(); ++c) {
+        if (!(std::fabs(step[c]) > 0)) continue;
+        const auto it = m.noise.find(m.outputs[size_t(cmp[c])]);
+        if (it == m.noise.end() || std::fabs(step[c]) / std::sqrt(12.0) > kNoiseFloorFactor * it->second) return false;
+    }
+    return true;
+}
+
 // Every fitted parameter identified (FitReport::unidentified empty strings).
 bool identified(const FitReport& f)
 {
@@ -271,10 +291,12 @@ void how_far(const std::vector<std::pair<FitReport, EffectSetup>>& singles, cons
     const bool at_noise_floor = R.noise_floor > 0 && R.gap_before_total <= R.noise_floor_limit;
     // At the noise floor the best single candidate is still the verdict
     // (status beyond_noise) when it is a finding by score, every parameter
-    // identified, and its improvement reaches kNoiseReach beyond the noise's.
+    // identified, not a quantization the stated noise holds, and its
+    // improvement reaches kNoiseReach beyond the noise's.
     double reach = kNaN;
     if (at_noise_floor && !singles.empty() && !singles.front().first.effects.empty() &&
-        singles.front().first.score >= opt.margin && identified(singles.front().first)) {
+        singles.front().first.score >= opt.margin && identified(singles.front().first) &&
+        !quantization_within_stated_noise(singles.front().first, base_problem)) {
         reach = noise_reach(E, singles.front().first);
         if (reach >= kNoiseReach) R.verdict = singles.front().first;
     }
