@@ -85,6 +85,18 @@ void check_nominal_replay(const NominalModel& model, const ReplayTrace& nom, con
 // (rows x compared outputs): the null draws of noise_reach (how_far.cpp).
 using RowRange = std::pair<Eigen::Index, Eigen::Index>;  // first row, count
 
+// Draw d of white Gaussian noise, rows x sd.size(), column i of std sd[i];
+// fixed seeds: the floor is a property of the record.
+Eigen::MatrixXd white_draw(int d, Eigen::Index rows, const std::vector<double>& sd)
+{
+    std::mt19937_64 gen(0x6e6f697365ULL + std::uint64_t(d));
+    std::normal_distribution<double> g(0.0, 1.0);
+    Eigen::MatrixXd w(rows, Eigen::Index(sd.size()));
+    for (Eigen::Index i = 0; i < w.cols(); ++i)
+        for (Eigen::Index k = 0; k < rows; ++k) w(k, i) = sd[size_t(i)] * g(gen);
+    return w;
+}
+
 std::vector<Eigen::MatrixXd> loop_noise_draws(const NominalModel& model, const ReplaySetup& setup, const ReplayTrace& clean,
                                               const std::vector<RowRange>& ranges, std::vector<Eigen::MatrixXd>* series = nullptr)
 {
@@ -98,12 +110,8 @@ std::vector<Eigen::MatrixXd> loop_noise_draws(const NominalModel& model, const R
     }
     const Eigen::Index ncmp = Eigen::Index(setup.compared.size());
     std::vector<Eigen::MatrixXd> out(ranges.size(), Eigen::MatrixXd(kLoopNoiseDraws, ncmp));
-    Eigen::MatrixXd w(rows, ny);
     for (int d = 0; d < kLoopNoiseDraws; ++d) {
-        std::mt19937_64 gen(0x6e6f697365ULL + std::uint64_t(d));  // fixed: the floor is a property of the record
-        std::normal_distribution<double> g(0.0, 1.0);
-        for (Eigen::Index i = 0; i < ny; ++i)
-            for (Eigen::Index k = 0; k < rows; ++k) w(k, i) = sd[size_t(i)] * g(gen);
+        const Eigen::MatrixXd w = white_draw(d, rows, sd);
         const ReplayTrace tr = replay(setup, {}, rows, &w);
         for (size_t r = 0; r < ranges.size(); ++r) {
             const auto [first, n] = ranges[r];
@@ -213,15 +221,7 @@ Baseline baseline(const NominalModel& model, const Signals& data, const Signals*
         B.eval_noise_sd = draws_rms(B.eval_noise_draws);
     } else if (!noise_sd.empty()) {
         // Open loop the noise-only residual is the stated white noise itself.
-        const Eigen::Index ncmp = Eigen::Index(outs.size());
-        for (int d = 0; d < kLoopNoiseDraws; ++d) {
-            std::mt19937_64 gen(0x6e6f697365ULL + std::uint64_t(d));
-            std::normal_distribution<double> g(0.0, 1.0);
-            Eigen::MatrixXd w(R.eval_samples, ncmp);
-            for (Eigen::Index c = 0; c < ncmp; ++c)
-                for (Eigen::Index k = 0; k < R.eval_samples; ++k) w(k, c) = noise_sd[size_t(c)] * g(gen);
-            B.eval_noise_residual.push_back(w);
-        }
+        for (int d = 0; d < kLoopNoiseDraws; ++d) B.eval_noise_residual.push_back(white_draw(d, R.eval_samples, noise_sd));
     }
     // Each coupling's scale (FitContext::Sq, set per site by which()).
     std::vector<double>& coupling_Sq = B.coupling_Sq;

@@ -90,13 +90,15 @@ bool quantization_within_stated_noise(const FitReport& f, const FitProblem& P)
     return true;
 }
 
-// Every fitted parameter identified (FitReport::unidentified empty strings).
-bool identified(const FitReport& f)
+// How many of f's fitted parameters the record does not identify
+// (FitReport::unidentified's non-empty reasons).
+size_t unidentified_count(const FitReport& f)
 {
+    size_t n = 0;
     for (const auto& e : f.unidentified)
         for (const std::string& w : e)
-            if (!w.empty()) return false;
-    return true;
+            if (!w.empty()) ++n;
+    return n;
 }
 
 // The verdict's status and its sentence (GapResult::Confidence::status):
@@ -157,12 +159,9 @@ void verdict_status(GapResult& R, double margin, bool at_noise_floor, double fit
         c.explanation = b;
         return;
     }
-    size_t unid = 0, params = 0;
-    for (const auto& e : R.verdict.unidentified)
-        for (const std::string& w : e) {
-            ++params;
-            if (!w.empty()) ++unid;
-        }
+    const size_t unid = unidentified_count(R.verdict);
+    size_t params = 0;
+    for (const auto& e : R.verdict.unidentified) params += e.size();
     const bool explained = noise ? R.verdict.gap <= R.noise_floor_limit : R.verdict.shrink >= kExplainedShrink;
     c.status = explained ? "explained" : "partly_explained";
     if (noise)
@@ -295,7 +294,7 @@ void how_far(const std::vector<std::pair<FitReport, EffectSetup>>& singles, cons
     // improvement reaches kNoiseReach beyond the noise's.
     double reach = kNaN;
     if (at_noise_floor && !singles.empty() && !singles.front().first.effects.empty() &&
-        singles.front().first.score >= opt.margin && identified(singles.front().first) &&
+        singles.front().first.score >= opt.margin && unidentified_count(singles.front().first) == 0 &&
         !quantization_within_stated_noise(singles.front().first, base_problem)) {
         reach = noise_reach(E, singles.front().first);
         if (reach >= kNoiseReach) R.verdict = singles.front().first;
