@@ -45,6 +45,11 @@ std::vector<double> octave_grid(double lo, double hi, int n)
 EffectSetup edge_setup(Effect e, const FitContext& c, double lo, double hi, const std::vector<double>& grid, bool symmetric)
 {
     EffectSetup s{e, Site::force_input, 0, {{c.umax, -hi, -lo, false}, {c.umax, lo, hi, false}}, {}, true};
+    // Each edge does nothing at its neutral value: a dead zone's at 0, a
+    // limit's at the bound beyond the command (ParamSpec::neutral).
+    const double off = e == Effect::saturation ? hi : lo;
+    s.spec[0].neutral = -off;
+    s.spec[1].neutral = off;
     if (symmetric) {
         s.spec[0].mirror = 1;
         for (double b : grid) s.starts.push_back({-b, b});

@@ -152,6 +152,78 @@ std::vector<std::vector<double>> screened_starts(const FitProblem& P, const std:
     return starts;
 }
 
+// The grid's values of one coordinate, with three geometric steps between
+// neighbours of one sign (a 2-per-octave grid becomes 8 per octave).
+std::vector<double> densified(std::vector<double> v)
+{
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+    std::vector<double> out;
+    for (size_t i = 0; i < v.size(); ++i) {
+        out.push_back(v[i]);
+        if (i + 1 < v.size() && v[i] * v[i + 1] > 0)
+            for (int t = 1; t < 4; ++t) out.push_back(v[i] * std::pow(v[i + 1] / v[i], t / 4.0));
+    }
+    return out;
+}
+
+// Starts from a coordinate search, for a last effect with two or more
+// parameters that each act on their own part of the signal
+// (ParamSpec::neutral: the edges of a dead zone or a saturation). The joint
+// grid misses the true pair when the cost is a narrow valley in each edge:
+// in a loop a limit set too tight costs more than none (the loop saturates
+// where the machine did not, and a lightly damped arm rings), so on a grid
+// of two per octave every pair is either off the valley or leaves one edge
+// out of reach, where the cost is flat in it and the solver cannot move
+// it (an outside arm's -0.56/+0.44 limits: the best pair refined to a
+// lower of -0.49 and an upper of 0.56, above the command, with no held-out
+// gain). Each coordinate alone, the others at their neutral value, is a
+// one-dimensional search on the grid made 4 times finer and refined; the
+// start of the joint refine is every coordinate at its own optimum, and
+// each coordinate's optimum alone (the record may reach one edge only).
+std::vector<std::vector<double>> coordinate_starts(const FitProblem& P, const std::vector<double>& init, int max_iter)
+{
+    const EffectSetup& last = P.effects.back();
+    std::vector<size_t> sep;
+    for (size_t j = 0; j < last.spec.size(); ++j)
+        if (std::isfinite(last.spec[j].neutral) && !last.spec[j].fixed && last.spec[j].mirror < 0) sep.push_back(j);
+    if (sep.size() < 2 || last.starts.empty()) return {};
+    std::vector<double> off = last.starts.front();
+    for (size_t j : sep) off[j] = last.spec[j].neutral;
+    std::vector<double> joint = off;
+    std::vector<std::vector<double>> out;
+    const size_t n0 = init.size();
+    for (size_t j : sep) {
+        FitProblem Q = P;
+        for (size_t k : sep)
+            if (k != j) Q.effects.back().spec[k].fixed = true;
+        std::vector<double> values;
+        for (const std::vector<double>& st : last.starts) values.push_back(st[j]);
+        std::vector<double> th = init;
+        th.insert(th.end(), off.begin(), off.end());
+        double best = std::numeric_limits<double>::infinity();
+        std::vector<double> start = th;
+        for (double v : densified(values)) {
+            th[n0 + j] = v;
+            const double c = Q.cost(th);
+            if (c < best) {
+                best = c;
+                start = th;
+            }
+        }
+        const FitOutcome o = refine(Q, start, max_iter);
+        joint[j] = o.theta[n0 + j];
+        std::vector<double> alone = init;
+        alone.insert(alone.end(), off.begin(), off.end());
+        alone[n0 + j] = joint[j];
+        out.push_back(alone);
+    }
+    std::vector<double> th = init;
+    th.insert(th.end(), joint.begin(), joint.end());
+    out.insert(out.begin(), th);
+    return out;
+}
+
 FitOutcome refine_best(FitProblem& P, const std::vector<std::vector<double>>& starts, int max_iter)
 {
     FitOutcome best;
@@ -253,7 +325,9 @@ double white_cost(const FitProblem& P, const std::vector<double>& white_sd)
 // of its starts (screened by cost first when it is a grid); returns the best.
 FitOutcome fit_set(FitProblem& P, const std::vector<double>& init, int max_iter)
 {
-    return refine_best(P, screened_starts(P, init), max_iter);
+    std::vector<std::vector<double>> starts = screened_starts(P, init);
+    for (std::vector<double>& st : coordinate_starts(P, init, max_iter)) starts.push_back(std::move(st));
+    return refine_best(P, starts, max_iter);
 }
 
 // Why the data do not identify a fitted parameter (normalized value x, std

@@ -7,6 +7,7 @@
 // their own units). The fixed effect names are the ones of issue 10.
 #pragma once
 #include <Eigen/Dense>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -103,6 +104,14 @@ struct ParamSpec {
     // A nested restriction's parameter held at its start value (Coulomb
     // friction without offset): fixed, and not counted as fitted.
     bool held = false;
+    // The normalized value at which this parameter does nothing (a dead
+    // zone's edge at 0, a limit beyond the command's reach), or NaN. An
+    // effect with two or more such parameters acts through each on its own
+    // part of the signal (the two edges of a dead zone or a saturation: the
+    // command above the upper one, below the lower one); the fit searches
+    // each alone, the others at this value, before the joint refine
+    // (fit.cpp coordinate_starts).
+    double neutral = std::numeric_limits<double>::quiet_NaN();
 };
 // The fit set-up of one effect at one site: parameter scales and bounds, start values.
 struct EffectSetup {
