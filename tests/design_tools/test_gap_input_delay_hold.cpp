@@ -1,5 +1,6 @@
-// test_gap_input_delay_hold.cpp - a fractional input delay of a continuous
-// plant under the zero-order hold (replay.cpp, docs/gap.md "What the document
+// test_gap_input_delay_hold.cpp - a fractional input delay of a plant under
+// the zero-order hold (a continuous document, or a discrete one with a
+// generator) (replay.cpp, docs/gap.md "What the document
 // states", gap.input_delay): between two samples the plant sees the older
 // input for f Ts and the newer one for the rest of the sample, which the
 // replay reproduces exactly (not by interpolating the two inputs).
@@ -22,8 +23,21 @@ namespace {
 const double kTs = 0.01, kA1 = 7.0, kB1 = 3.0, kA2 = 23.0, kB2 = 11.0;
 const Eigen::Index kN = 400;
 
-nlohmann::json doc(double delay_samples)
+nlohmann::json doc(double delay_samples, bool discrete = false);
+
+nlohmann::json doc(double delay_samples, bool discrete)
 {
+    if (discrete) {
+        // The same lags held at kTs: a discrete document (its generator
+        // log(A)/Ts, nominal.cpp discrete_generator, gives the hold back).
+        const double e1 = std::exp(-kA1 * kTs), e2 = std::exp(-kA2 * kTs);
+        nlohmann::json d = doc(delay_samples, false);
+        d["time"] = "discrete";
+        d["Ts"] = kTs;
+        d["A"] = {{e1, 0}, {0, e2}};
+        d["B"] = {{kB1 / kA1 * (1 - e1), 0}, {0, kB2 / kA2 * (1 - e2)}};
+        return d;
+    }
     return {{"schema", "frac.model"},
             {"version", 1},
             {"kind", "statespace"},
@@ -102,4 +116,13 @@ TEST(GapInputDelayHold, a_fractional_delay_of_a_continuous_plant_is_replayed_exa
     // (The interpolation (1 - f) u(k - n) + f u(k - n - 1) alone, before
     // the hold's correction, missed the record by 0.008 after its steps (0.5 % of a step).)
     EXPECT_GT(max_error(doc(2.0), {}, 2.37 * kTs, 1.0), 1e-2);
+}
+
+// A discrete document of the same plant: its generator (log(A)/Ts, B's
+// hold inverted) gives the same exact hold. Before, a discrete plant kept
+// the interpolation alone (0.008 off after a step).
+TEST(GapInputDelayHold, a_fractional_delay_of_a_discrete_plant_is_replayed_exactly)
+{
+    EXPECT_LT(max_error(doc(2.37, true), {}, 2.37 * kTs, 1.0), 1e-9);
+    EXPECT_LT(max_error(doc(0.4, true), {{Effect::input_delay, {1.2 * kTs}}}, 1.6 * kTs, 1.0), 1e-9);
 }

@@ -6,6 +6,8 @@
 #include "fracdesign/design/riccati.hpp"
 #include "fracdesign/model_json.hpp"
 
+#include <unsupported/Eigen/MatrixFunctions>
+
 #include <cmath>
 #include <complex>
 #include <fstream>
@@ -34,6 +36,22 @@ void zoh(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, double Ts, Eigen::M
     const StateSpace d = design::c2d_zoh(s, Ts);
     Ad = d.A;
     Bd = d.B;
+}
+
+bool discrete_generator(const Eigen::MatrixXd& A, double Ts, Eigen::MatrixXd& Ac, Eigen::MatrixXd& G_inv)
+{
+    const Eigen::Index n = A.rows();
+    if (n == 0 || !A.allFinite()) return false;
+    const Eigen::MatrixXd L = Eigen::MatrixXd(A.log()) / Ts;
+    if (!L.allFinite()) return false;
+    Eigen::MatrixXd Phi, G;
+    zoh(L, Eigen::MatrixXd::Identity(n, n), Ts, Phi, G);
+    if (!((Phi - A).cwiseAbs().maxCoeff() <= 1e-8 * std::max(1.0, A.cwiseAbs().maxCoeff()))) return false;
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(G);
+    if (!lu.isInvertible()) return false;
+    Ac = L;
+    G_inv = lu.inverse();
+    return true;
 }
 
 namespace {
@@ -132,6 +150,8 @@ NominalModel nominal_from_json(const json& doc, double Ts, const std::string& ba
                                      std::to_string(Ts) + " s");
         m.A = ss.A;
         m.B = ss.B;
+        Eigen::MatrixXd G_inv;
+        if (discrete_generator(m.A, Ts, m.Ac, G_inv)) m.Bc = G_inv * m.B;
     }
     m.C = ss.C;
     m.D = ss.D;
@@ -169,7 +189,15 @@ NominalModel nominal_from_json(const json& doc, double Ts, const std::string& ba
         }
     }
     // gap.coupling: springs and flexible modes inside the plant (coupling.cpp).
-    if (g.contains("coupling")) m.couplings = read_couplings(g.at("coupling"), m.A, ss.continuous() ? ss.A : Eigen::MatrixXd(), Ts);
+    if (g.contains("coupling")) {
+        m.couplings = read_couplings(g.at("coupling"), m.A, ss.continuous() ? ss.A : Eigen::MatrixXd(), Ts);
+        // A discrete plant's coupling states its torque's discrete column:
+        // with the plant's generator, its continuous column is G^-1 torque
+        // (mode_shift's variant in the coupling's spring, mode_shift.cpp).
+        Eigen::MatrixXd Ac, G_inv;
+        if (!ss.continuous() && discrete_generator(m.A, Ts, Ac, G_inv))
+            for (Coupling& c : m.couplings) c.torque_c = G_inv * c.torque;
+    }
     if (g.contains("closed_loop")) {
         const json& cl = g.at("closed_loop");
         const std::string w = "model gap.closed_loop";

@@ -161,10 +161,10 @@ void gl_init_or_throw(frac_gl& gl, double r, double Ts, int L, std::vector<frac_
 // step that feeds the plant eta's mean. The mean alone is second order in
 // w Ts: at w Ts = 0.24 (38 Hz at 1 ms) under a PD loop its phase error
 // moves a limit cycle's period, and the replay drifts off the record (the
-// servo family, docs/gap.md). The generator is the document's when its
-// plant is continuous, else log(A)/Ts with Bc = (int_0^Ts e^{Ac s} ds)^-1 B
-// when A has a real logarithm that gives it back; a plant with none (a
-// pure delay chain) keeps the mean (exact = false).
+// servo family, docs/gap.md). The generator is NominalModel::Ac (the
+// document's, else discrete_generator's: log(A)/Ts with Bc = (int_0^Ts
+// e^{Ac s} ds)^-1 B); a plant without one (a pure delay chain) keeps the
+// mean (exact = false).
 struct SeriesHold {
     Eigen::Matrix2d As = Eigen::Matrix2d::Identity();
     Eigen::Vector2d Bs = Eigen::Vector2d::Zero(), Cs = Eigen::Vector2d::Zero();
@@ -197,14 +197,9 @@ SeriesHold series_mode_hold(const NominalModel& m, double w, double zeta)
     if (Ag.rows() == nx && m.Bc.rows() == nx && m.Bc.cols() == m.B.cols()) {
         bf = m.Bc.col(m.force_input);
     } else {
-        Ag = Eigen::MatrixXd(m.A.log()) / Ts;
-        if (!Ag.allFinite()) return h;
-        Eigen::MatrixXd Phi, G;
-        zoh(Ag, Eigen::MatrixXd::Identity(nx, nx), Ts, Phi, G);
-        if (!((Phi - m.A).cwiseAbs().maxCoeff() <= 1e-8 * std::max(1.0, m.A.cwiseAbs().maxCoeff()))) return h;
-        Eigen::FullPivLU<Eigen::MatrixXd> lu(G);
-        if (!lu.isInvertible()) return h;
-        bf = lu.solve(Eigen::VectorXd(m.B.col(m.force_input)));
+        Eigen::MatrixXd G_inv;
+        if (!discrete_generator(m.A, Ts, Ag, G_inv)) return h;
+        bf = G_inv * m.B.col(m.force_input);
     }
     Eigen::MatrixXd Aj = Eigen::MatrixXd::Zero(nx + 2, nx + 2), Bj = Eigen::MatrixXd::Zero(nx + 2, 1), Ad, Bd;
     Aj.topLeftCorner(nx, nx) = Ag;
@@ -260,8 +255,9 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     // time of 7.38 samples, twice the noise's gap, named an unmodelled mode
     // at 50 Hz). Exact for the linear path; the force input's gain, limits
     // and dead zone enter it, a play or a series mode does not (the
-    // interpolation stays for them), and a discrete plant, or one whose
-    // mode is moved (mode_shift), keeps the interpolation alone.
+    // interpolation stays for them), and a plant without a generator
+    // (NominalModel::Ac), or one whose mode is moved (mode_shift), keeps the
+    // interpolation alone.
     const int din_n = int(din);
     const double din_f = din - din_n;
     Eigen::MatrixXd Bfrac;

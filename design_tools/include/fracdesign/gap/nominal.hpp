@@ -99,9 +99,11 @@ struct NominalModel {
     std::string name;
     double Ts = 0.0;
     Eigen::MatrixXd A, B, C, D;  // discrete at Ts
-    // The plant's generator x' = Ac x + Bc u when the document's plant is
-    // continuous (empty for a discrete one): the series mode's exact hold
-    // (replay.cpp, series_mode_hold).
+    // The plant's generator x' = Ac x + Bc u: the document's when its plant
+    // is continuous, else log(A)/Ts and Bc = G^-1 B when A has one
+    // (discrete_generator); empty without. The series mode's exact hold
+    // (replay.cpp series_mode_hold), a fractional input delay's exact hold,
+    // a mode moved by a coupling's spring (mode_shift.cpp).
     Eigen::MatrixXd Ac, Bc;
     std::vector<std::string> inputs, outputs;
     bool closed_loop = false;
@@ -195,6 +197,13 @@ void read_statespace(const nlohmann::json& j, Eigen::Index m, Eigen::Index p, do
 // Zero-order-hold discretisation: Ad = e^{A Ts}, Bd = int_0^Ts e^{A s} ds B
 // (design::c2d_zoh; std::invalid_argument on a non-finite entry or Ts <= 0).
 void zoh(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, double Ts, Eigen::MatrixXd& Ad, Eigen::MatrixXd& Bd);
+
+// The generator of a discrete plant held at Ts: Ac = log(A)/Ts and the
+// inverse of the hold integral G = int_0^Ts e^{Ac s} ds, so that a column b
+// of the discrete input map is G^-1 b in continuous time. False (outputs
+// untouched) when A has no real logarithm that gives it back to 1e-8 (a
+// pure delay, a mode at or above Nyquist) or G is singular.
+bool discrete_generator(const Eigen::MatrixXd& A, double Ts, Eigen::MatrixXd& Ac, Eigen::MatrixXd& G_inv);
 
 }  // namespace gap
 }  // namespace fracdesign
