@@ -295,52 +295,14 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
               [](const std::pair<FitReport, EffectSetup>& a, const std::pair<FitReport, EffectSetup>& b) {
                   return a.first.score > b.first.score;
               });
-    // Nested effects: stribeck_friction contains coulomb_friction (Fs = Fc);
-    // it ranks above it when, and only when, it lowers the held-out gap by
-    // the margin.
-    // Likewise mode_shift (any change seen at one mode: near a mode, Kelvin-
-    // Voigt damping in a spring or an added mode coupled to it moves that
-    // mode's frequency and damping) ranks above fractional_damping and
-    // unmodelled_mode, the mechanisms, only by the margin. And output_delay
-    // ranks above input_delay only by the margin: with every output delayed
-    // alike it is the input delay wherever the delay commutes with the plant
-    // (an open loop, a linear SISO loop whose measured output is the one
-    // compared: y_m = C G e^{-ds} / (1 + C G e^{-ds}) r either way), and
-    // one delay of the plant's input is the smaller model than one per
-    // sensor; the confidence lists the other as a look-alike with the
-    // experiment that separates them.
-    auto nested_rule = [&](auto& list, auto report_of, Effect contained, Effect container) {
-        int ic = -1, is = -1;
-        for (size_t i = 0; i < list.size(); ++i) {
-            const FitReport& f = report_of(list[i]);
-            if (f.effects.size() != 1) continue;
-            // A mode in a sensor's reading moves no plant mode: mode_shift
-            // does not contain it, the two rank by their scores.
-            if (f.effects[0].kind == contained && !(contained == Effect::unmodelled_mode && f.effects[0].site == Site::sensor))
-                ic = int(i);
-            if (f.effects[0].kind == container) is = int(i);
-        }
-        if (ic < 0 || is < 0) return;
-        const bool by_margin = report_of(list[size_t(is)]).gap <= (1.0 - opt.margin) * report_of(list[size_t(ic)]).gap;
-        // The container behind the contained although it lowers the gap by
-        // the margin: ahead of it (the parameter penalty is taken on the
-        // shrink, so near a full shrink it outweighs a gap several times
-        // smaller: Stribeck leaving 0.0020 against Coulomb's 0.0073 scored
-        // 0.983 against 0.988); ahead of it without the margin: behind it.
-        const int from = by_margin ? is : ic, to = by_margin ? ic : is;
-        if (from > to) {
-            auto moved = list[size_t(from)];
-            list.erase(list.begin() + from);
-            list.insert(list.begin() + to, moved);
-        }
-    };
+    // Nested effects (stages.hpp nested_rule).
     for (const std::pair<Effect, Effect>& n : {std::pair<Effect, Effect>{Effect::coulomb_friction, Effect::stribeck_friction},
                                                {Effect::fractional_damping, Effect::mode_shift},
                                                {Effect::unmodelled_mode, Effect::mode_shift},
                                                {Effect::input_delay, Effect::output_delay}}) {
-        nested_rule(R.candidates, [](const FitReport& f) -> const FitReport& { return f; }, n.first, n.second);
+        nested_rule(R.candidates, [](const FitReport& f) -> const FitReport& { return f; }, n.first, n.second, opt.margin);
         nested_rule(singles, [](const std::pair<FitReport, EffectSetup>& p) -> const FitReport& { return p.first; }, n.first,
-                    n.second);
+                    n.second, opt.margin);
     }
     return singles;
 }
