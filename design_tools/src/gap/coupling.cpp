@@ -4,7 +4,6 @@
 #include <cmath>
 #include <complex>
 #include <stdexcept>
-#include <unsupported/Eigen/MatrixFunctions>
 
 #include "fracdesign/gap/nominal.hpp"
 
@@ -49,21 +48,15 @@ void setup_coupling_substeps(Coupling& c, const Eigen::MatrixXd& A, double Ts, c
         ts(i) = c.torque(c.states[size_t(i)]);
         for (Eigen::Index j = 0; j < ns; ++j) c.Phi(i, j) = A(c.states[size_t(i)], c.states[size_t(j)]);
     }
-    // The generator Ac = log(Phi)/Ts. zoh(Ac, I, tau) gives e^{Ac tau} and
-    // int_0^tau e^{Ac s} ds together: at Ts they must give Phi back (else Phi
-    // has no real logarithm) and the hold integral to invert; at Ts/m the
-    // sub-step.
-    const Eigen::MatrixXd Ac = Eigen::MatrixXd(c.Phi.log()) / Ts;
+    // The block's generator Ac = log(Phi)/Ts and its inverted hold integral
+    // (discrete_generator); zoh(Ac, I, Ts/m) gives the sub-step.
+    Eigen::MatrixXd Ac;
+    bool singular = false;
+    if (!discrete_generator(c.Phi, Ts, Ac, c.Gamma_inv, &singular))
+        throw std::runtime_error(singular ? w + ": the block of 'states' gives a singular hold integral"
+                                          : w + ": the block of 'states' has no real matrix logarithm (a pure delay or a "
+                                                "mode at or above Nyquist in it); list the plant's physical states in 'states'");
     const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(ns, ns);
-    Eigen::MatrixXd Phi_ts, G;
-    if (Ac.allFinite()) zoh(Ac, I, Ts, Phi_ts, G);
-    const double err = Ac.allFinite() ? (Phi_ts - c.Phi).cwiseAbs().maxCoeff() : HUGE_VAL;
-    if (!(err <= 1e-8 * std::max(1.0, c.Phi.cwiseAbs().maxCoeff())))
-        throw std::runtime_error(w + ": the block of 'states' has no real matrix logarithm (a pure delay or a mode at or "
-                                 "above Nyquist in it); list the plant's physical states in 'states'");
-    Eigen::FullPivLU<Eigen::MatrixXd> lu(G);
-    if (!lu.isInvertible()) throw std::runtime_error(w + ": the block of 'states' gives a singular hold integral");
-    c.Gamma_inv = lu.inverse();
     zoh(Ac, I, Ts / c.substeps, c.Phi_m, c.Gamma_m);
     c.torque_m = c.Gamma_m * (c.Gamma_inv * ts);
     // The block's slowest oscillation (its eigenvalues s = log(z)/Ts with a

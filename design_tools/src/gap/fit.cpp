@@ -188,19 +188,21 @@ std::vector<std::vector<double>> coordinate_starts(const FitProblem& P, const st
     for (size_t j = 0; j < last.spec.size(); ++j)
         if (std::isfinite(last.spec[j].neutral) && !last.spec[j].fixed && last.spec[j].mirror < 0) sep.push_back(j);
     if (sep.size() < 2 || last.starts.empty()) return {};
-    std::vector<double> off = last.starts.front();
-    for (size_t j : sep) off[j] = last.spec[j].neutral;
-    std::vector<double> joint = off;
-    std::vector<std::vector<double>> out;
+    // The earlier effects at init, the last one's separable parameters at
+    // their neutral values (its others at its first start).
+    std::vector<double> off = init;
+    off.insert(off.end(), last.starts.front().begin(), last.starts.front().end());
     const size_t n0 = init.size();
+    for (size_t j : sep) off[n0 + j] = last.spec[j].neutral;
+    std::vector<double> joint = off;
+    std::vector<std::vector<double>> out(1);  // out[0]: the joint start, set below
     for (size_t j : sep) {
         FitProblem Q = P;
         for (size_t k : sep)
             if (k != j) Q.effects.back().spec[k].fixed = true;
         std::vector<double> values;
         for (const std::vector<double>& st : last.starts) values.push_back(st[j]);
-        std::vector<double> th = init;
-        th.insert(th.end(), off.begin(), off.end());
+        std::vector<double> th = off;
         double best = std::numeric_limits<double>::infinity();
         std::vector<double> start = th;
         for (double v : densified(values)) {
@@ -211,16 +213,12 @@ std::vector<std::vector<double>> coordinate_starts(const FitProblem& P, const st
                 start = th;
             }
         }
-        const FitOutcome o = refine(Q, start, max_iter);
-        joint[j] = o.theta[n0 + j];
-        std::vector<double> alone = init;
-        alone.insert(alone.end(), off.begin(), off.end());
-        alone[n0 + j] = joint[j];
+        joint[n0 + j] = refine(Q, start, max_iter).theta[n0 + j];
+        std::vector<double> alone = off;
+        alone[n0 + j] = joint[n0 + j];
         out.push_back(alone);
     }
-    std::vector<double> th = init;
-    th.insert(th.end(), joint.begin(), joint.end());
-    out.insert(out.begin(), th);
+    out[0] = joint;
     return out;
 }
 

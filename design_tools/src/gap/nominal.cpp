@@ -38,8 +38,9 @@ void zoh(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, double Ts, Eigen::M
     Bd = d.B;
 }
 
-bool discrete_generator(const Eigen::MatrixXd& A, double Ts, Eigen::MatrixXd& Ac, Eigen::MatrixXd& G_inv)
+bool discrete_generator(const Eigen::MatrixXd& A, double Ts, Eigen::MatrixXd& Ac, Eigen::MatrixXd& G_inv, bool* singular)
 {
+    if (singular) *singular = false;
     const Eigen::Index n = A.rows();
     if (n == 0 || !A.allFinite()) return false;
     const Eigen::MatrixXd L = Eigen::MatrixXd(A.log()) / Ts;
@@ -48,7 +49,10 @@ bool discrete_generator(const Eigen::MatrixXd& A, double Ts, Eigen::MatrixXd& Ac
     zoh(L, Eigen::MatrixXd::Identity(n, n), Ts, Phi, G);
     if (!((Phi - A).cwiseAbs().maxCoeff() <= 1e-8 * std::max(1.0, A.cwiseAbs().maxCoeff()))) return false;
     Eigen::FullPivLU<Eigen::MatrixXd> lu(G);
-    if (!lu.isInvertible()) return false;
+    if (!lu.isInvertible()) {
+        if (singular) *singular = true;
+        return false;
+    }
     Ac = L;
     G_inv = lu.inverse();
     return true;
@@ -140,6 +144,9 @@ NominalModel nominal_from_json(const json& doc, double Ts, const std::string& ba
     m.outputs = ss.outputs;
     if (m.inputs.size() != size_t(ss.nu()) || m.outputs.size() != size_t(ss.ny()))
         throw std::runtime_error("model: the gap diagnosis needs input and output names (they name the data columns)");
+    // A discrete plant's inverted hold integral (discrete_generator), empty
+    // without a generator: its couplings' continuous torque columns below.
+    Eigen::MatrixXd G_inv;
     if (ss.continuous()) {
         zoh(ss.A, ss.B, Ts, m.A, m.B);
         m.Ac = ss.A;
@@ -150,7 +157,6 @@ NominalModel nominal_from_json(const json& doc, double Ts, const std::string& ba
                                      std::to_string(Ts) + " s");
         m.A = ss.A;
         m.B = ss.B;
-        Eigen::MatrixXd G_inv;
         if (discrete_generator(m.A, Ts, m.Ac, G_inv)) m.Bc = G_inv * m.B;
     }
     m.C = ss.C;
@@ -194,8 +200,7 @@ NominalModel nominal_from_json(const json& doc, double Ts, const std::string& ba
         // A discrete plant's coupling states its torque's discrete column:
         // with the plant's generator, its continuous column is G^-1 torque
         // (mode_shift's variant in the coupling's spring, mode_shift.cpp).
-        Eigen::MatrixXd Ac, G_inv;
-        if (!ss.continuous() && discrete_generator(m.A, Ts, Ac, G_inv))
+        if (G_inv.size() != 0)
             for (Coupling& c : m.couplings) c.torque_c = G_inv * c.torque;
     }
     if (g.contains("closed_loop")) {

@@ -284,7 +284,6 @@ void nested_rule(List& list, ReportOf report_of, Effect contained, Effect contai
     }
 }
 
-
 // The nominal model's own entry among the candidates ("none").
 FitReport none_candidate(const GapResult& R);
 // Which: every candidate alone at each of its sites; R.candidates (none

@@ -202,8 +202,10 @@ void zoh(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, double Ts, Eigen::M
 // inverse of the hold integral G = int_0^Ts e^{Ac s} ds, so that a column b
 // of the discrete input map is G^-1 b in continuous time. False (outputs
 // untouched) when A has no real logarithm that gives it back to 1e-8 (a
-// pure delay, a mode at or above Nyquist) or G is singular.
-bool discrete_generator(const Eigen::MatrixXd& A, double Ts, Eigen::MatrixXd& Ac, Eigen::MatrixXd& G_inv);
+// pure delay, a mode at or above Nyquist) or G is singular; `singular`, if
+// given, tells the second from the first.
+bool discrete_generator(const Eigen::MatrixXd& A, double Ts, Eigen::MatrixXd& Ac, Eigen::MatrixXd& G_inv,
+                        bool* singular = nullptr);
 
 }  // namespace gap
 }  // namespace fracdesign
