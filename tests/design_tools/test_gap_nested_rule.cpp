@@ -14,12 +14,14 @@ using namespace fracdesign::gap;
 namespace {
 
 const double kMargin = GapOptions().margin;
+const Unidentified kId = Unidentified::identified;
 
-FitReport single(Effect e, std::vector<double> params, double gap, std::vector<std::string> unidentified)
+FitReport single(Effect e, std::vector<double> params, double gap, std::vector<Unidentified> why)
 {
     FitReport r;
     r.effects = {{e, std::move(params), e == Effect::mode_shift ? Site::mode : Site::coupling, 0}};
-    r.unidentified = {std::move(unidentified)};
+    r.identification.emplace_back();
+    for (Unidentified u : why) r.identification[0].push_back({u, u == Unidentified::identified ? "" : unidentified_name(u)});
     r.gap = gap;
     return r;
 }
@@ -42,13 +44,13 @@ const std::vector<Effect> kShiftFirst = {Effect::mode_shift, Effect::fractional_
 TEST(GapNestedRule, identified_fractional_damping_keeps_its_place_unless_mode_shift_wins_by_the_margin)
 {
     const double g = 0.10;
-    const FitReport fd = single(Effect::fractional_damping, {1266, 0.5}, g, {"", ""});
+    const FitReport fd = single(Effect::fractional_damping, {1266, 0.5}, g, {kId, kId});
     // mode_shift ahead by score but not by the margin: behind the mechanism.
-    EXPECT_EQ(order({single(Effect::mode_shift, {13, 0.05}, g * (1 - 0.5 * kMargin), {"", ""}), fd},
+    EXPECT_EQ(order({single(Effect::mode_shift, {13, 0.05}, g * (1 - 0.5 * kMargin), {kId, kId}), fd},
                     Effect::fractional_damping, Effect::mode_shift),
               kDampingFirst);
     // By the margin: ahead.
-    EXPECT_EQ(order({fd, single(Effect::mode_shift, {13, 0.05}, g * (1 - 2 * kMargin), {"", ""})},
+    EXPECT_EQ(order({fd, single(Effect::mode_shift, {13, 0.05}, g * (1 - 2 * kMargin), {kId, kId})},
                     Effect::fractional_damping, Effect::mode_shift),
               kShiftFirst);
 }
@@ -58,8 +60,8 @@ TEST(GapNestedRule, identified_fractional_damping_keeps_its_place_unless_mode_sh
 TEST(GapNestedRule, fractional_damping_at_its_lower_alpha_is_the_restriction_of_mode_shift)
 {
     const double g = 0.10;
-    const std::vector<std::string> at_bound = {"", "at its lower bound 0.05"};
-    const FitReport ms = single(Effect::mode_shift, {13, 0.05}, g, {"", ""});
+    const std::vector<Unidentified> at_bound = {kId, Unidentified::lower_bound};
+    const FitReport ms = single(Effect::mode_shift, {13, 0.05}, g, {kId, kId});
     // The damping ahead by score, not by the margin (the outside belt: 55.3 %
     // against 54.5 % shrink): behind mode_shift.
     EXPECT_EQ(order({single(Effect::fractional_damping, {1266, 0.05}, g * (1 - 0.5 * kMargin), at_bound), ms},
@@ -70,7 +72,7 @@ TEST(GapNestedRule, fractional_damping_at_its_lower_alpha_is_the_restriction_of_
                     Effect::fractional_damping, Effect::mode_shift),
               kDampingFirst);
     // At its upper bound alpha is no spring: the mechanism keeps its place.
-    EXPECT_EQ(order({single(Effect::fractional_damping, {40, 0.95}, g * (1 - 0.5 * kMargin), {"", "at its upper bound 0.95"}), ms},
+    EXPECT_EQ(order({single(Effect::fractional_damping, {40, 0.95}, g * (1 - 0.5 * kMargin), {kId, Unidentified::upper_bound}), ms},
                     Effect::fractional_damping, Effect::mode_shift),
               kDampingFirst);
 }

@@ -140,22 +140,25 @@ TEST(GapVerdict, flags_a_parameter_at_its_bound_and_not_the_true_effects)
     ASSERT_EQ(r.verdict.effects.size(), 1u);
     EXPECT_EQ(r.verdict.effects[0].kind, Effect::viscous_friction);
     EXPECT_NEAR(r.verdict.effects[0].params[0], Fv, 0.05 * Fv);
-    EXPECT_EQ(r.verdict.unidentified[0][0], "");
+    EXPECT_TRUE(r.verdict.identification[0][0].identified()) << r.verdict.identification[0][0].text;
     bool seen = false;
     for (const FitReport& c : r.candidates) {
         if (c.effects.size() != 1) continue;
         if (c.effects[0].kind == Effect::backlash) {
             seen = true;
-            EXPECT_NE(c.unidentified[0][0].find("lower bound 0"), std::string::npos) << c.unidentified[0][0];
+            EXPECT_EQ(c.identification[0][0].why, Unidentified::lower_bound) << c.identification[0][0].text;
+            EXPECT_NE(c.identification[0][0].text.find("lower bound 0"), std::string::npos) << c.identification[0][0].text;
         }
         if (c.effects[0].kind == Effect::deadzone)  // well-determined edges off their bound 0 are identified
             for (size_t z = 0; z < 2; ++z)
-                if (std::fabs(c.effects[0].params[z]) > 5 * c.stddev[0][z]) EXPECT_EQ(c.unidentified[0][z], "");
+                if (std::fabs(c.effects[0].params[z]) > 5 * c.stddev[0][z])
+                    EXPECT_TRUE(c.identification[0][z].identified()) << c.identification[0][z].text;
     }
     EXPECT_TRUE(seen);
     const nlohmann::json j = result_json(r);
     EXPECT_EQ(j["verdict"]["params_unit"]["Fv"], "V/(rad/s)");
     EXPECT_TRUE(j["verdict"]["unidentified"].empty());
+    EXPECT_TRUE(j["verdict"]["unidentified_kind"].empty());
 }
 
 TEST(GapVerdict, names_input_and_output_delay_as_look_alikes_in_open_loop)
@@ -297,13 +300,16 @@ TEST(GapVerdict, flags_a_limit_edge_the_command_never_reaches)
     ASSERT_FALSE(r.verdict.effects.empty());
     ASSERT_EQ(r.verdict.effects[0].kind, Effect::saturation);
     EXPECT_NEAR(r.verdict.effects[0].params[1], upper, 0.02 * upper);
-    EXPECT_EQ(r.verdict.unidentified[0][1], "");
-    EXPECT_EQ(r.verdict.unidentified[0][0].rfind("never reached", 0), 0u) << r.verdict.unidentified[0][0];
+    EXPECT_TRUE(r.verdict.identification[0][1].identified()) << r.verdict.identification[0][1].text;
+    EXPECT_EQ(r.verdict.identification[0][0].why, Unidentified::never_reached) << r.verdict.identification[0][0].text;
+    EXPECT_EQ(r.verdict.identification[0][0].text.rfind("never reached", 0), 0u) << r.verdict.identification[0][0].text;
     // The fitted lower edge, if the fit put it inside the command's range,
     // would clip the record: it lies below the command's least value.
     EXPECT_LT(r.verdict.effects[0].params[0], umin + 0.02 * std::fabs(umin));
     const nlohmann::json j = result_json(r);
     EXPECT_TRUE(j["verdict"]["unidentified"].contains("lower"));
+    EXPECT_EQ(j["verdict"]["unidentified_kind"]["lower"], "never_reached");
+    EXPECT_FALSE(j["verdict"]["unidentified_kind"].contains("upper"));
     EXPECT_EQ(r.confidence.status, "explained");
     EXPECT_NE(r.confidence.explanation.find("1 of its 2 parameters are not identified"), std::string::npos) << r.confidence.explanation;
 }

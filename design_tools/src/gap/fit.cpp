@@ -328,11 +328,23 @@ FitOutcome fit_set(FitProblem& P, const std::vector<double>& init, int max_iter)
     return refine_best(P, starts, max_iter);
 }
 
-// Why the data do not identify a fitted parameter (normalized value x, std
-// sd), or "" when they do: at a bound (within 0.1 % of the bound range, or
-// 1e-6 of an unbounded side's scale), no std (a flat or singular cost), or a
-// std larger than the value (the data cannot tell it from zero).
-std::string unidentified_reason(double x, double sd, const ParamSpec& p)
+std::string unidentified_name(Unidentified u)
+{
+    switch (u) {
+    case Unidentified::identified: return "identified";
+    case Unidentified::lower_bound: return "lower_bound";
+    case Unidentified::upper_bound: return "upper_bound";
+    case Unidentified::no_std: return "no_std";
+    case Unidentified::std_exceeds: return "std_exceeds";
+    case Unidentified::never_reached: return "never_reached";
+    }
+    return "identified";
+}
+
+// Whether the data identify a fitted parameter (normalized value x, std sd),
+// and if not, why: at a bound, no std (a flat or singular cost), or a std
+// larger than the value (the data cannot tell it from zero).
+Identification unidentified_reason(double x, double sd, const ParamSpec& p)
 {
     char b[160];
     // "At a bound": the bound lies within two standard deviations of the
@@ -345,18 +357,18 @@ std::string unidentified_reason(double x, double sd, const ParamSpec& p)
     if (std::isfinite(sd)) tol = std::max(tol, 2.0 * std::fabs(sd));
     if (std::fabs(x - p.lo) <= tol) {
         std::snprintf(b, sizeof b, "at its lower bound %.4g", p.lo * p.scale);
-        return b;
+        return {Unidentified::lower_bound, b};
     }
     if (std::fabs(x - p.hi) <= tol) {
         std::snprintf(b, sizeof b, "at its upper bound %.4g", p.hi * p.scale);
-        return b;
+        return {Unidentified::upper_bound, b};
     }
-    if (!std::isfinite(sd)) return "no uncertainty estimate (the cost is flat in it)";
+    if (!std::isfinite(sd)) return {Unidentified::no_std, "no uncertainty estimate (the cost is flat in it)"};
     if (sd > std::fabs(x)) {
         std::snprintf(b, sizeof b, "std %.3g exceeds |value| %.3g", std::fabs(sd * p.scale), std::fabs(x * p.scale));
-        return b;
+        return {Unidentified::std_exceeds, b};
     }
-    return "";
+    return {};
 }
 
 namespace {
@@ -371,9 +383,9 @@ void flag_unreached_edges(const FitProblem& P, FitReport& r)
     bool have = false;
     double lo = 0.0, hi = 0.0;
     char b[200];
-    for (size_t i = 0; i < r.effects.size() && i < r.unidentified.size(); ++i) {
+    for (size_t i = 0; i < r.effects.size() && i < r.identification.size(); ++i) {
         const EffectInstance& e = r.effects[i];
-        if ((e.kind != Effect::saturation && e.kind != Effect::deadzone) || e.params.size() < 2 || r.unidentified[i].size() < 2)
+        if ((e.kind != Effect::saturation && e.kind != Effect::deadzone) || e.params.size() < 2 || r.identification[i].size() < 2)
             continue;
         if (!have) {
             const ReplayTrace tr = replay(*P.setup, r.effects, P.y.rows());
@@ -381,15 +393,15 @@ void flag_unreached_edges(const FitProblem& P, FitReport& r)
             hi = tr.u_static.maxCoeff();
             have = true;
         }
-        if (e.params[0] < lo && r.unidentified[i][0].empty()) {
+        if (e.params[0] < lo && r.identification[i][0].identified()) {
             std::snprintf(b, sizeof b, "never reached: the command's least value on the fit rows is %.4g, so the record says only lower < %.4g",
                           lo, lo);
-            r.unidentified[i][0] = b;
+            r.identification[i][0] = {Unidentified::never_reached, b};
         }
-        if (e.params[1] > hi && r.unidentified[i][1].empty()) {
+        if (e.params[1] > hi && r.identification[i][1].identified()) {
             std::snprintf(b, sizeof b, "never reached: the command's largest value on the fit rows is %.4g, so the record says only upper > %.4g",
                           hi, hi);
-            r.unidentified[i][1] = b;
+            r.identification[i][1] = {Unidentified::never_reached, b};
         }
     }
 }
@@ -403,19 +415,19 @@ FitReport make_report(const FitProblem& P, const FitOutcome& o, const Evaluator&
     size_t k = 0;
     for (const EffectSetup& e : P.effects) {
         std::vector<double> sd;
-        std::vector<std::string> why;
+        std::vector<Identification> why;
         const size_t first = k;
         for (const ParamSpec& p : e.spec) {
             // A mirrored parameter (ParamSpec::mirror) has the std and the identification of its source.
             const size_t src = p.mirror >= 0 ? first + size_t(p.mirror) : k;
             const ParamSpec& ps = e.spec[src - first];
             sd.push_back(ps.fixed ? kNaN : ps.scale * o.stddev[src]);
-            why.push_back(ps.fixed ? "" : unidentified_reason(o.theta[src], o.stddev[src], ps));
+            why.push_back(ps.fixed ? Identification{} : unidentified_reason(o.theta[src], o.stddev[src], ps));
             if (p.mirror < 0 && !p.held) r.fitted_params += 1;
             ++k;
         }
         r.stddev.push_back(sd);
-        r.unidentified.push_back(why);
+        r.identification.push_back(why);
     }
     flag_unreached_edges(P, r);
     const Eigen::MatrixXd yhat = E.simulate(r.effects);

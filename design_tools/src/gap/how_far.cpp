@@ -38,7 +38,7 @@ void added_mode_first(FitReport& v)
     };
     to_front(v.effects);
     to_front(v.stddev);
-    to_front(v.unidentified);
+    to_front(v.identification);
 }
 
 GapResult::Confidence confidence_of(const std::vector<FitReport>& candidates, const FitReport& verdict, double margin)
@@ -91,13 +91,13 @@ bool quantization_within_stated_noise(const FitReport& f, const FitProblem& P)
 }
 
 // How many of f's fitted parameters the record does not identify
-// (FitReport::unidentified's non-empty reasons).
+// (FitReport::identification).
 size_t unidentified_count(const FitReport& f)
 {
     size_t n = 0;
-    for (const auto& e : f.unidentified)
-        for (const std::string& w : e)
-            if (!w.empty()) ++n;
+    for (const auto& e : f.identification)
+        for (const Identification& w : e)
+            if (!w.identified()) ++n;
     return n;
 }
 
@@ -161,7 +161,7 @@ void verdict_status(GapResult& R, double margin, bool at_noise_floor, double fit
     }
     const size_t unid = unidentified_count(R.verdict);
     size_t params = 0;
-    for (const auto& e : R.verdict.unidentified) params += e.size();
+    for (const auto& e : R.verdict.identification) params += e.size();
     const bool explained = noise ? R.verdict.gap <= R.noise_floor_limit : R.verdict.shrink >= kExplainedShrink;
     c.status = explained ? "explained" : "partly_explained";
     if (noise)

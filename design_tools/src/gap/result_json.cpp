@@ -23,7 +23,7 @@ nlohmann::json per_output(const std::vector<std::string>& outs, const std::vecto
 nlohmann::json fit_json(const GapResult& R, const FitReport& f, const std::vector<std::pair<double, double>>& bands)
 {
     nlohmann::json params = nlohmann::json::object(), sd = nlohmann::json::object(), units = nlohmann::json::object(),
-                   unid = nlohmann::json::object();
+                   unid = nlohmann::json::object(), unid_kind = nlohmann::json::object();
     std::vector<std::string> names, sites, couplings;
     for (size_t i = 0; i < f.effects.size(); ++i) {
         const EffectInstance& e = f.effects[i];
@@ -36,7 +36,10 @@ nlohmann::json fit_json(const GapResult& R, const FitReport& f, const std::vecto
             params[prefix + pn[j].name] = num(e.params[j]);
             sd[prefix + pn[j].name] = num(f.stddev[i][j]);
             units[prefix + pn[j].name] = pn[j].unit;
-            if (i < f.unidentified.size() && !f.unidentified[i][j].empty()) unid[prefix + pn[j].name] = f.unidentified[i][j];
+            if (i < f.identification.size() && j < f.identification[i].size() && !f.identification[i][j].identified()) {
+                unid[prefix + pn[j].name] = f.identification[i][j].text;
+                unid_kind[prefix + pn[j].name] = unidentified_name(f.identification[i][j].why);
+            }
         }
         names.push_back(effect_name(e.kind));
     }
@@ -46,7 +49,8 @@ nlohmann::json bj = nlohmann::json::array();
     nlohmann::json j = {{"params", params},         {"params_std", sd},     {"gap_after", per_output(R.outputs, f.gap_after)},
                         {"gap_after_total", num(f.gap)}, {"shrink", num(f.shrink)}, {"score", num(f.score)},
                         {"fitted_params", f.fitted_params}, {"bands", bj}, {"solver", f.solver},
-                        {"params_unit", units}, {"unidentified", unid}};
+                        {"params_unit", units}, {"unidentified", unid},
+                        {"unidentified_kind", unid_kind}};
     if (names.empty()) {
         names.push_back("none");
         sites.push_back("");

@@ -172,7 +172,7 @@ FitOutcome fit_continued(FitProblem& P, const std::vector<double>& init, int max
 // each of its starts (screened by cost when they are a grid); the best.
 FitOutcome fit_set(FitProblem& P, const std::vector<double>& init, int max_iter);
 // Why the data do not identify a fitted parameter, or "" when they do.
-std::string unidentified_reason(double x, double sd, const ParamSpec& p);
+Identification unidentified_reason(double x, double sd, const ParamSpec& p);
 // The fit's FitReport: held-out gap, shrink, score, parameter std.
 FitReport make_report(const FitProblem& P, const FitOutcome& o, const Evaluator& E, double penalty);
 // Physical parameters of an effect set in P's normalized units.
@@ -267,8 +267,8 @@ void nested_rule(List& list, ReportOf report_of, Effect contained, Effect contai
     }
     if (ic < 0 || is < 0) return;
     const FitReport& fc = report_of(list[size_t(ic)]);
-    const bool restriction = contained == Effect::fractional_damping && fc.unidentified.size() == 1 &&
-                             fc.unidentified[0].size() == 2 && fc.unidentified[0][1].rfind("at its lower bound", 0) == 0;
+    const bool restriction = contained == Effect::fractional_damping && fc.identification.size() == 1 &&
+                             fc.identification[0].size() == 2 && fc.identification[0][1].why == Unidentified::lower_bound;
     const int small = restriction ? is : ic, large = restriction ? ic : is;
     const bool by_margin = report_of(list[size_t(large)]).gap <= (1.0 - margin) * report_of(list[size_t(small)]).gap;
     // The larger behind the smaller although it lowers the gap by the

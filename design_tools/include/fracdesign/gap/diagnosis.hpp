@@ -34,12 +34,32 @@ struct GapOptions {
     std::function<void(const std::string&)> progress;  // one line per finished fit (the CLI prints them on stderr)
 };
 
+// Why the data do not identify a fitted parameter (fit.cpp
+// unidentified_reason, flag_unreached_edges). The kind is what code decides
+// on (stages.hpp nested_rule: alpha at its lower bound); the text is what
+// the report and result.json print.
+enum class Unidentified {
+    identified,       // the record pins it
+    lower_bound,      // the bound lies within 2 std of the estimate (or at it, without a std)
+    upper_bound,
+    no_std,           // the cost is flat or singular in it
+    std_exceeds,      // the record cannot tell it from zero
+    never_reached     // a limit or dead-zone edge the command never reaches: the record only bounds it
+};
+// result.json's spelling ("lower_bound", ...).
+std::string unidentified_name(Unidentified u);
+
+struct Identification {
+    Unidentified why = Unidentified::identified;
+    std::string text;  // the reason in words, with the figures ("" when identified)
+    bool identified() const { return why == Unidentified::identified; }
+};
+
 struct FitReport {
     std::vector<EffectInstance> effects;
     std::vector<std::vector<double>> stddev;  // per effect, per parameter (NaN where not estimable)
-    // Per effect, per parameter: why the data do not identify it ("" when they
-    // do): its std exceeds its value, it sits at a bound, or no std exists.
-    std::vector<std::vector<std::string>> unidentified;
+    // Per effect, per parameter: whether the data identify it, and if not, why.
+    std::vector<std::vector<Identification>> identification;
     std::vector<double> gap_after;            // nrmse per compared output, held-out
     double gap = 0.0;                         // aggregate held-out gap sqrt(mean nrmse^2)
     double shrink = 0.0;                      // 1 - gap / gap_before
