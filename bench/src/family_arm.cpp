@@ -426,11 +426,8 @@ Signals record(const BenchCase& c, const Derived& d, bool noise)
 // Visibility of an open-loop diagnosis (docs/gap.md "Families", arm): the residual of the nominal's replay
 // from the record's own torque_actual must change, on some compared output, by kVisibleNoiseMultiple times
 // that output's floor: the noise std (gyro: the document's imu_noise; motor velocity: the wire step / sqrt 12)
-// and the nominal's own error on the effect-free record, rms-combined.
-struct InvisibleEffect : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
-
+// and the nominal's own error on the effect-free record, rms-combined. A document on which no size is
+// visible throws InvisibleEffect (visibility.hpp) and is redrawn.
 struct Baseline {
     Eigen::MatrixXd residual;   // of the effect-free (or the effects so far) noise-free record
     std::vector<double> floor;  // per output

@@ -212,8 +212,8 @@ TruthEffect draw_visible(const std::string& e, const Plant& p, const Eigen::Vect
             return t;
         }
     }
-    throw std::runtime_error("gap-bench: family foprocess: no visible size of '" + e + "' in " +
-                             std::to_string(kVisibleDraws) + " draws");
+    throw InvisibleEffect("gap-bench: family foprocess: no visible size of '" + e + "' in " +
+                          std::to_string(kVisibleDraws) + " draws");
 }
 
 // The look-alikes this family proves (gap_bench.hpp, TruthEffect::
@@ -249,31 +249,48 @@ BenchCase draw(const BenchOptions& opt, int id)
     c.seed = case_seed(opt.seed, id);
     hil_rng rng;
     hil_rng_seed(&rng, c.seed);
+    const std::string first = drawn_label(labels(), opt.seed, id);
+    // A process (with its input record) on which no size of the drawn effect
+    // is visible is redrawn (visibility.hpp, kPlantDraws).
     Plant p;
-    p.K = uniform(&rng, 0.5, 3.0);
-    p.lambda = uniform(&rng, 0.5, 0.95);
-    p.T = std::pow(uniform(&rng, 0.3, 1.5), p.lambda);  // time scale T^(1/lambda) in [0.3, 1.5] s
-    p.delay = 5 + int(hil_rng_u64(&rng) % 46);           // tau in [0.05, 0.5] s
-    p.input_seed = hil_rng_u64(&rng) >> 11;              // exact in a double
-    const Eigen::VectorXd u = input_record(p);
-    p.sigma = 1.0;
-    const Eigen::VectorXd y0 = simulate(p, Injection(), u, nullptr);
-    const double ystd = std::sqrt((y0.array() - y0.mean()).square().mean());
-    // 1 % of the output's std: above the truth's own discretization error
-    // (Grunwald-Letnikov at Ts/5, first order in its step) and the
-    // nominal's realization error (0.1 %, docs/gap.md); with the hand-built
-    // statespace nominal before, Oustaloup + zero-order hold against this
-    // truth left up to 0.6 % rms, read as a 1 ms delay at 0.3 % noise.
-    p.sigma = 1e-2 * ystd;
+    Eigen::VectorXd u;
+    Injection in;
+    std::string why;
+    for (int i = 0;; ++i) {
+        if (i == kPlantDraws)
+            throw std::runtime_error("gap-bench: family foprocess: case " + std::to_string(id) + ": " +
+                                     std::to_string(kPlantDraws) + " processes drawn, none shows the drawn effect; the last: " + why);
+        p.K = uniform(&rng, 0.5, 3.0);
+        p.lambda = uniform(&rng, 0.5, 0.95);
+        p.T = std::pow(uniform(&rng, 0.3, 1.5), p.lambda);  // time scale T^(1/lambda) in [0.3, 1.5] s
+        p.delay = 5 + int(hil_rng_u64(&rng) % 46);           // tau in [0.05, 0.5] s
+        p.input_seed = hil_rng_u64(&rng) >> 11;              // exact in a double
+        u = input_record(p);
+        p.sigma = 1.0;
+        const Eigen::VectorXd y0 = simulate(p, Injection(), u, nullptr);
+        const double ystd = std::sqrt((y0.array() - y0.mean()).square().mean());
+        // 1 % of the output's std: above the truth's own discretization error
+        // (Grunwald-Letnikov at Ts/5, first order in its step) and the
+        // nominal's realization error (0.1 %, docs/gap.md); with the hand-built
+        // statespace nominal before, Oustaloup + zero-order hold against this
+        // truth left up to 0.6 % rms, read as a 1 ms delay at 0.3 % noise.
+        p.sigma = 1e-2 * ystd;
+        c.truth.clear();
+        in = Injection();
+        try {
+            if (first != "none") {
+                c.truth.push_back(draw_visible(first, p, u, ystd, &rng, in));
+                if (hil_rng_uniform(&rng) < opt.two_effect_prob)
+                    c.truth.push_back(draw_visible(second_label(labels(), first, &rng), p, u, ystd, &rng, in));
+            }
+        } catch (const InvisibleEffect& e) {
+            why = e.what();
+            continue;
+        }
+        break;
+    }
     c.plant = {{"K", p.K}, {"T", p.T}, {"lambda", p.lambda}, {"tau", p.delay * kTs}, {"sigma", p.sigma},
                {"input_seed", double(p.input_seed)}};
-    Injection in;
-    const std::string first = drawn_label(labels(), opt.seed, id);
-    if (first != "none") {
-        c.truth.push_back(draw_visible(first, p, u, ystd, &rng, in));
-        if (hil_rng_uniform(&rng) < opt.two_effect_prob)
-            c.truth.push_back(draw_visible(second_label(labels(), first, &rng), p, u, ystd, &rng, in));
-    }
     for (TruthEffect& t : c.truth) add_equivalents(p, u, in, t);
     c.scenario = "family = foprocess\n";
     for (const auto& kv : c.plant) c.scenario += scenario_line("plant." + kv.first, kv.second);

@@ -352,8 +352,8 @@ TruthEffect draw_visible(const std::string& e, const Plant& p, double peak, hil_
             return t;
         }
     }
-    throw std::runtime_error("gap-bench: family servo: no visible size of '" + e + "' that leaves the loop damped in " +
-                             std::to_string(kVisibleDraws) + " draws");
+    throw InvisibleEffect("gap-bench: family servo: no visible size of '" + e + "' that leaves the loop damped in " +
+                          std::to_string(kVisibleDraws) + " draws");
 }
 
 // The look-alikes this family proves (gap_bench.hpp, TruthEffect::
@@ -416,18 +416,35 @@ Drawn draw(const BenchOptions& opt, int id)
     d.c.seed = case_seed(opt.seed, id);
     hil_rng rng;
     hil_rng_seed(&rng, d.c.seed);
-    const Plant p = draw_plant(&rng);
+    const std::vector<std::string>& labels = servo_labels();
+    const std::string first = drawn_label(labels, opt.seed, id);
+    // An axis on which no size of the drawn effect is visible and keeps the
+    // loop damped is redrawn (visibility.hpp, kPlantDraws).
+    Plant p;
+    std::string why;
+    for (int i = 0;; ++i) {
+        if (i == kPlantDraws)
+            throw std::runtime_error("gap-bench: family servo: case " + std::to_string(id) + ": " + std::to_string(kPlantDraws) +
+                                     " axes drawn, none shows the drawn effect; the last: " + why);
+        p = draw_plant(&rng);
+        d.c.truth.clear();
+        d.in = Injection();
+        const double peak = peak_cmd(p);
+        try {
+            if (first != "none") {
+                d.c.truth.push_back(draw_visible(first, p, peak, &rng, d.in));
+                if (hil_rng_uniform(&rng) < opt.two_effect_prob)
+                    d.c.truth.push_back(draw_visible(second_label(labels, first, &rng), p, peak, &rng, d.in));
+            }
+        } catch (const InvisibleEffect& e) {
+            why = e.what();
+            continue;
+        }
+        break;
+    }
     d.c.plant = {{"J", p.J},   {"b", p.b},   {"Ka", p.Ka}, {"Kp", p.Kp}, {"Kd", p.Kd},
                  {"a", p.a},   {"A1", p.A1}, {"f1", p.f1}, {"A2", p.A2}, {"f2", p.f2},
                  {"sigma_pos", p.sigma_pos}, {"sigma_vel", p.sigma_vel}};
-    const double peak = peak_cmd(p);
-    const std::vector<std::string>& labels = servo_labels();
-    const std::string first = drawn_label(labels, opt.seed, id);
-    if (first != "none") {
-        d.c.truth.push_back(draw_visible(first, p, peak, &rng, d.in));
-        if (hil_rng_uniform(&rng) < opt.two_effect_prob)
-            d.c.truth.push_back(draw_visible(second_label(labels, first, &rng), p, peak, &rng, d.in));
-    }
     for (TruthEffect& t : d.c.truth) add_equivalents(p, d.in, t);
     d.c.scenario = "family = servo\n";
     for (const auto& kv : d.c.plant) d.c.scenario += scenario_line("plant." + kv.first, kv.second);

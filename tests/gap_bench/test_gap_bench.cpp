@@ -364,6 +364,34 @@ TEST(GapBenchFamilies, draw_every_label_per_round_a_new_plant_per_case_and_diagn
     }
 }
 
+// A plant on which no size of the drawn effect is visible is redrawn with its
+// record (visibility.hpp, kPlantDraws) instead of stopping the bench: with
+// seed 7, servo case 14's first axis shows no input delay that is visible
+// and keeps the loop damped (1-2 extra cycles stay below the rule, 3
+// undamp it), and foprocess case 57's first process no visible saturation;
+// both stopped `gap-bench --seed 7` before. The drawn case holds the label
+// and the effect is visible on it.
+TEST(GapBenchFamilies, a_plant_that_cannot_show_the_drawn_effect_is_redrawn)
+{
+    const std::vector<std::pair<std::string, int>> cases = {{"servo", 14}, {"foprocess", 57}};
+    for (const auto& fc : cases) {
+        const Family& f = family(fc.first);
+        BenchOptions opt;
+        opt.family = fc.first;
+        opt.seed = 7;
+        BenchCase c;
+        bool drawn = false;
+        EXPECT_NO_THROW({
+            c = f.draw(opt, fc.second);
+            drawn = true;
+        }) << fc.first << " case " << fc.second;
+        if (!drawn) continue;
+        ASSERT_FALSE(c.truth.empty()) << fc.first;
+        EXPECT_EQ(c.truth[0].effect, drawn_label(f.labels, opt.seed, fc.second)) << fc.first;
+        EXPECT_EQ(f.draw(opt, fc.second).scenario, c.scenario) << fc.first << ": the redraw is deterministic";
+    }
+}
+
 // The nominal document of each family replays its effect-free record to the
 // sensor noise: without the effect, the gap is the noise (0.3 % of the
 // signal's std, servo position 0.02 % of its tone), and the verdict is none.

@@ -2,11 +2,17 @@
 // "gap-bench", "Visibility"): an injected effect must change at least one
 // compared output by at least kVisibleNoiseMultiple times that output's
 // noise std (rms over the record, both runs noise-free, same reference); a
-// draw that does not is redrawn, up to kVisibleDraws times, then refused
-// (std::runtime_error naming the family and effect: a size range that
-// cannot be seen is a defect of the family, not a case to score).
+// draw that does not is redrawn, up to kVisibleDraws times. A plant on which
+// no size in the family's range is visible (InvisibleEffect) is redrawn with
+// its record, up to kPlantDraws times (a servo loop on which 1-2 extra
+// cycles of delay stay below the rule and 3 undamp it; a process whose
+// drawn input levels stay inside every drawn limit), then refused
+// (std::runtime_error naming the family, the case and the effect: a size
+// range that no drawn plant shows is a defect of the family, not a case to
+// score).
 #pragma once
 #include <Eigen/Dense>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -19,6 +25,13 @@ constexpr double kVisibleNoiseMultiple = 5.0;
 // of another label as the truth's equivalent (gap_bench.hpp, TruthEffect).
 constexpr double kEquivalentNoiseMultiple = 0.05;
 constexpr int kVisibleDraws = 20;
+constexpr int kPlantDraws = 10;
+
+// No visible size of the drawn effect on this plant in kVisibleDraws draws:
+// the family draws another plant.
+struct InvisibleEffect : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
 
 // rms over samples of (with - without) per column, divided by noise_std per
 // column; returns the largest ratio.
