@@ -324,4 +324,15 @@ TEST(GapVerdict, coulomb_and_stribeck_hold_the_same_term)
     EXPECT_FALSE(same_term(Effect::coulomb_friction, Effect::viscous_friction));
     EXPECT_FALSE(same_term(Effect::stribeck_friction, Effect::viscous_friction));
     EXPECT_FALSE(same_term(Effect::input_delay, Effect::output_delay));
+    // With the sites: fractional damping to ground holds viscous friction
+    // (its alpha = 1 end), either way round; in a coupling's spring it is
+    // another term, and the site-free pairs stay as they are.
+    const Site F = Site::force_input, K = Site::coupling;
+    EXPECT_TRUE(same_term(Effect::fractional_damping, F, Effect::viscous_friction, F));
+    EXPECT_TRUE(same_term(Effect::viscous_friction, F, Effect::fractional_damping, F));
+    EXPECT_FALSE(same_term(Effect::fractional_damping, K, Effect::viscous_friction, F));
+    EXPECT_FALSE(same_term(Effect::viscous_friction, F, Effect::fractional_damping, K));
+    EXPECT_TRUE(same_term(Effect::coulomb_friction, F, Effect::stribeck_friction, F));
+    EXPECT_FALSE(same_term(Effect::fractional_damping, F, Effect::coulomb_friction, F));
+    EXPECT_FALSE(same_term(Effect::fractional_damping, F, Effect::fractional_damping, F));
 }

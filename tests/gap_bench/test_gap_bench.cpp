@@ -392,6 +392,49 @@ TEST(GapBenchFamilies, a_plant_that_cannot_show_the_drawn_effect_is_redrawn)
     }
 }
 
+// Two effects under a loop: viscous friction and an asymmetric dead zone at
+// the drive of a drawn servo axis (seed 7, case 19 of the bench: its plant
+// and its drawn truth), the document stating the sensors' noise. Alone, the
+// dead zone's symmetric restriction wins its single fit (the unmodelled
+// friction hides the asymmetry), so the forward selection must release it
+// beside the friction (how_far.cpp `released`): before, the verdict kept
+// the edges at +-0.331 and added Coulomb friction with an offset of -0.086 V
+// for the asymmetry. And fractional damping to ground is no second term
+// beside viscous friction (same_term with sites): before that, the pair
+// came out Fv 0.040 V s/rad (true 0.0055) with c = -0.037 at alpha's 0.95
+// bound.
+TEST(GapBenchFamilies, a_symmetric_restriction_is_released_beside_a_second_effect)
+{
+    const Family& f = family("servo");
+    BenchOptions opt;
+    opt.family = "servo";
+    opt.seed = 7;
+    const BenchCase c = f.draw(opt, 19);
+    std::map<std::string, double> truth;
+    for (const TruthEffect& t : c.truth)
+        for (const TruthParam& p : t.params) truth[t.effect + "." + p.name] = p.value;
+    ASSERT_EQ(truth.size(), 3u) << "the case draws a dead zone and viscous friction";
+    ASSERT_TRUE(truth.count("deadzone.lower") && truth.count("deadzone.upper") && truth.count("viscous_friction.Fv"));
+    // Asymmetric enough that a symmetric pair cannot hold both edges within 10 %.
+    ASSERT_GT(std::fabs(truth["deadzone.lower"] + truth["deadzone.upper"]),
+              0.2 * std::max(-truth["deadzone.lower"], truth["deadzone.upper"]));
+    const CaseRun r = f.run(opt, c);
+    nlohmann::json doc = r.nominal;
+    doc["gap"]["noise"] = {{"position", c.plant.at("sigma_pos")}, {"velocity", c.plant.at("sigma_vel")}};
+    const GapResult g = diagnose(nominal_from_json(doc, r.data.Ts, ".", r.data.Ts * double(r.data.samples())), r.data, nullptr, GapOptions());
+    std::map<std::string, double> found;
+    for (const EffectInstance& e : g.verdict.effects) {
+        const std::vector<std::string> pn = param_names(e.kind, g.outputs, e.site);
+        for (size_t j = 0; j < pn.size(); ++j) found[effect_name(e.kind) + "." + pn[j]] = e.params[j];
+    }
+    ASSERT_EQ(g.verdict.effects.size(), 2u) << result_json(g)["verdict"].dump();
+    for (const auto& kv : truth) {
+        ASSERT_TRUE(found.count(kv.first)) << kv.first << " in " << result_json(g)["verdict"].dump();
+        EXPECT_NEAR(found[kv.first], kv.second, 0.1 * std::fabs(kv.second)) << kv.first;
+    }
+    EXPECT_GE(g.verdict.shrink, 0.8);
+}
+
 // The nominal document of each family replays its effect-free record to the
 // sensor noise: without the effect, the gap is the noise (0.3 % of the
 // signal's std, servo position 0.02 % of its tone), and the verdict is none.

@@ -517,6 +517,14 @@ bool same_term(Effect a, Effect b)
     return a != b && friction(a) && friction(b);
 }
 
+bool same_term(Effect a, Site sa, Effect b, Site sb)
+{
+    const auto viscous_pair = [](Effect x, Site sx, Effect y) {
+        return x == Effect::fractional_damping && sx == Site::force_input && y == Effect::viscous_friction;
+    };
+    return same_term(a, b) || viscous_pair(a, sa, b) || viscous_pair(b, sb, a);
+}
+
 std::string site_name(Site s)
 {
     switch (s) {

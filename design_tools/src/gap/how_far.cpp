@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -180,11 +181,31 @@ void verdict_status(GapResult& R, double margin, bool at_noise_floor, double fit
 
 // Forward selection does not add an effect to a set holding one with the
 // same term (same_term, effects.hpp).
-bool overlaps(const std::vector<EffectSetup>& set, Effect e)
+bool overlaps(const std::vector<EffectSetup>& set, const EffectSetup& e)
 {
     for (const EffectSetup& s : set)
-        if (same_term(s.kind, e)) return true;
+        if (same_term(s.kind, s.site, e.kind, e.site)) return true;
     return false;
+}
+
+// The set-up with its symmetric restriction released (every ParamSpec::
+// mirror fitted on its own, within its bounds, from the start's mirrored
+// value), or nothing when it has none. Held parameters (ParamSpec::held)
+// stay held: their bounds are the restriction's.
+std::optional<EffectSetup> released(const EffectSetup& es)
+{
+    EffectSetup full = es;
+    bool any = false;
+    for (size_t j = 0; j < full.spec.size(); ++j) {
+        const int m = full.spec[j].mirror;
+        if (m < 0) continue;
+        any = true;
+        full.spec[j].mirror = -1;
+        for (std::vector<double>& st : full.starts)
+            if (size_t(m) < st.size() && j < st.size()) st[j] = -st[size_t(m)];
+    }
+    if (!any) return std::nullopt;
+    return full;
 }
 
 }  // namespace
@@ -313,7 +334,7 @@ void how_far(const std::vector<std::pair<FitReport, EffectSetup>>& singles, cons
             FitProblem pick_prob;
             int tried = 0;
             for (size_t i = 0; i < singles.size() && tried < 3; ++i) {
-                if (used[i] || singles[i].first.score <= 0 || overlaps(cur.effects, singles[i].second.kind)) continue;
+                if (used[i] || singles[i].first.score <= 0 || overlaps(cur.effects, singles[i].second)) continue;
                 ++tried;
                 // The new effect starts from its single fit, the others from the current set.
                 FitProblem P = cur;
@@ -322,8 +343,23 @@ void how_far(const std::vector<std::pair<FitReport, EffectSetup>>& singles, cons
                 solo.effects = {es};
                 es.starts = {normalized(solo, singles[i].first.effects)};
                 P.effects.push_back(es);
-                const FitOutcome o = fit_set(P, theta, opt.max_iterations / 2);
+                FitOutcome o = fit_set(P, theta, opt.max_iterations / 2);
                 FitReport rep = make_report(P, o, E, opt.param_penalty);
+                // A symmetric restriction (ParamSpec::mirror) won its single
+                // fit with the others unmodelled; beside them its edges may
+                // part: the released set-up is fitted too, from the same
+                // start, and kept when it scores better.
+                if (const std::optional<EffectSetup> full = released(es)) {
+                    FitProblem Q = cur;
+                    Q.effects.push_back(*full);
+                    FitOutcome q = fit_set(Q, theta, opt.max_iterations / 2);
+                    FitReport qrep = make_report(Q, q, E, opt.param_penalty);
+                    if (qrep.score > rep.score) {
+                        P = std::move(Q);
+                        o = std::move(q);
+                        rep = std::move(qrep);
+                    }
+                }
                 if (pick < 0 || rep.gap < pick_rep.gap) {
                     pick = int(i);
                     pick_rep = rep;
