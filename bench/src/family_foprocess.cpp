@@ -255,11 +255,7 @@ BenchCase draw(const BenchOptions& opt, int id)
     Plant p;
     Eigen::VectorXd u;
     Injection in;
-    std::string why;
-    for (int i = 0;; ++i) {
-        if (i == kPlantDraws)
-            throw std::runtime_error("gap-bench: family foprocess: case " + std::to_string(id) + ": " +
-                                     std::to_string(kPlantDraws) + " processes drawn, none shows the drawn effect; the last: " + why);
+    with_plant_redraws("foprocess", id, "processes", [&] {
         p.K = uniform(&rng, 0.5, 3.0);
         p.lambda = uniform(&rng, 0.5, 0.95);
         p.T = std::pow(uniform(&rng, 0.3, 1.5), p.lambda);  // time scale T^(1/lambda) in [0.3, 1.5] s
@@ -277,18 +273,12 @@ BenchCase draw(const BenchOptions& opt, int id)
         p.sigma = 1e-2 * ystd;
         c.truth.clear();
         in = Injection();
-        try {
-            if (first != "none") {
-                c.truth.push_back(draw_visible(first, p, u, ystd, &rng, in));
-                if (hil_rng_uniform(&rng) < opt.two_effect_prob)
-                    c.truth.push_back(draw_visible(second_label(labels(), first, &rng), p, u, ystd, &rng, in));
-            }
-        } catch (const InvisibleEffect& e) {
-            why = e.what();
-            continue;
+        if (first != "none") {
+            c.truth.push_back(draw_visible(first, p, u, ystd, &rng, in));
+            if (hil_rng_uniform(&rng) < opt.two_effect_prob)
+                c.truth.push_back(draw_visible(second_label(labels(), first, &rng), p, u, ystd, &rng, in));
         }
-        break;
-    }
+    });
     c.plant = {{"K", p.K}, {"T", p.T}, {"lambda", p.lambda}, {"tau", p.delay * kTs}, {"sigma", p.sigma},
                {"input_seed", double(p.input_seed)}};
     for (TruthEffect& t : c.truth) add_equivalents(p, u, in, t);

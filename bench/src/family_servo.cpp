@@ -421,27 +421,17 @@ Drawn draw(const BenchOptions& opt, int id)
     // An axis on which no size of the drawn effect is visible and keeps the
     // loop damped is redrawn (visibility.hpp, kPlantDraws).
     Plant p;
-    std::string why;
-    for (int i = 0;; ++i) {
-        if (i == kPlantDraws)
-            throw std::runtime_error("gap-bench: family servo: case " + std::to_string(id) + ": " + std::to_string(kPlantDraws) +
-                                     " axes drawn, none shows the drawn effect; the last: " + why);
+    with_plant_redraws("servo", id, "axes", [&] {
         p = draw_plant(&rng);
         d.c.truth.clear();
         d.in = Injection();
         const double peak = peak_cmd(p);
-        try {
-            if (first != "none") {
-                d.c.truth.push_back(draw_visible(first, p, peak, &rng, d.in));
-                if (hil_rng_uniform(&rng) < opt.two_effect_prob)
-                    d.c.truth.push_back(draw_visible(second_label(labels, first, &rng), p, peak, &rng, d.in));
-            }
-        } catch (const InvisibleEffect& e) {
-            why = e.what();
-            continue;
+        if (first != "none") {
+            d.c.truth.push_back(draw_visible(first, p, peak, &rng, d.in));
+            if (hil_rng_uniform(&rng) < opt.two_effect_prob)
+                d.c.truth.push_back(draw_visible(second_label(labels, first, &rng), p, peak, &rng, d.in));
         }
-        break;
-    }
+    });
     d.c.plant = {{"J", p.J},   {"b", p.b},   {"Ka", p.Ka}, {"Kp", p.Kp}, {"Kd", p.Kd},
                  {"a", p.a},   {"A1", p.A1}, {"f1", p.f1}, {"A2", p.A2}, {"f2", p.f2},
                  {"sigma_pos", p.sigma_pos}, {"sigma_vel", p.sigma_vel}};

@@ -33,6 +33,26 @@ struct InvisibleEffect : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// Runs `attempt` (draw a plant, its record and its effects; InvisibleEffect
+// when no drawn size shows on that plant) until it returns, at most
+// kPlantDraws times; then std::runtime_error naming the family, the case,
+// what was drawn (`plants`, e.g. "axes") and the last attempt's reason.
+template <class Attempt>
+void with_plant_redraws(const std::string& family, int id, const std::string& plants, Attempt attempt)
+{
+    std::string why;
+    for (int i = 0; i < kPlantDraws; ++i) {
+        try {
+            attempt();
+            return;
+        } catch (const InvisibleEffect& e) {
+            why = e.what();
+        }
+    }
+    throw std::runtime_error("gap-bench: family " + family + ": case " + std::to_string(id) + ": " +
+                             std::to_string(kPlantDraws) + " " + plants + " drawn, none shows the drawn effect; the last: " + why);
+}
+
 // rms over samples of (with - without) per column, divided by noise_std per
 // column; returns the largest ratio.
 double visibility(const Eigen::MatrixXd& with, const Eigen::MatrixXd& without, const std::vector<double>& noise_std);
