@@ -2,6 +2,7 @@
 // nested_rule): the larger model goes ahead of the one it contains only by
 // the selection margin; fractional damping with alpha at its lower bound is
 // mode_shift's restriction (a stiffer spring), not the other way round.
+// And the bound unidentified_reason names.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -75,4 +76,21 @@ TEST(GapNestedRule, fractional_damping_at_its_lower_alpha_is_the_restriction_of_
     EXPECT_EQ(order({single(Effect::fractional_damping, {40, 0.95}, g * (1 - 0.5 * kMargin), {kId, Unidentified::upper_bound}), ms},
                     Effect::fractional_damping, Effect::mode_shift),
               kDampingFirst);
+}
+
+// unidentified_reason (fit.cpp) names the bound a parameter sits at. With a
+// std as wide as the parameter's range both bounds lie within two std of
+// the value; the kind names the nearer one (gap-bench seed 7 servo case 19:
+// a sensor mode at the band's upper edge 250 Hz, std 179 Hz, was "at its
+// lower bound 0.9524").
+TEST(GapIdentification, a_std_holding_both_bounds_names_the_nearer_one)
+{
+    ParamSpec f{1.0, 0.9524, 250.0, false};
+    EXPECT_EQ(unidentified_reason(250.0, 179.0, f).why, Unidentified::upper_bound);
+    EXPECT_NE(unidentified_reason(250.0, 179.0, f).text.find("upper bound 250"), std::string::npos);
+    EXPECT_EQ(unidentified_reason(1.0, 179.0, f).why, Unidentified::lower_bound);
+    // One bound within reach: that one, wherever the value lies.
+    EXPECT_EQ(unidentified_reason(240.0, 6.0, f).why, Unidentified::upper_bound);
+    EXPECT_EQ(unidentified_reason(3.0, 2.0, f).why, Unidentified::lower_bound);
+    EXPECT_TRUE(unidentified_reason(120.0, 6.0, f).identified());
 }

@@ -355,11 +355,15 @@ Identification unidentified_reason(double x, double sd, const ParamSpec& p)
     // Coulomb 5.93 +- 0.001 N m as "at its lower bound 0".
     double tol = std::isfinite(p.hi - p.lo) ? std::min(1e-3 * (p.hi - p.lo), 1e-3) : 1e-6;
     if (std::isfinite(sd)) tol = std::max(tol, 2.0 * std::fabs(sd));
-    if (std::fabs(x - p.lo) <= tol) {
+    // A std wide enough to hold both bounds names the nearer one: a mode at
+    // the band's upper edge with a std of the band's width is at its upper
+    // bound, not its lower.
+    const bool near_lo = std::fabs(x - p.lo) <= tol, near_hi = std::fabs(x - p.hi) <= tol;
+    if (near_lo && !(near_hi && std::fabs(x - p.hi) < std::fabs(x - p.lo))) {
         std::snprintf(b, sizeof b, "at its lower bound %.4g", p.lo * p.scale);
         return {Unidentified::lower_bound, b};
     }
-    if (std::fabs(x - p.hi) <= tol) {
+    if (near_hi) {
         std::snprintf(b, sizeof b, "at its upper bound %.4g", p.hi * p.scale);
         return {Unidentified::upper_bound, b};
     }
