@@ -464,6 +464,42 @@ TEST(GapBenchFamilies, an_effect_the_joint_refit_made_idle_leaves_the_verdict)
     }
 }
 
+// The nested rule on a selected set (how_far.cpp restrict_nested): a drawn
+// servo axis with Coulomb friction and an input delay (seed 7, case 33).
+// Alone, Stribeck friction wins by far (its hump takes over part of the
+// unmodelled delay); beside the delay the joint refit makes it a constant
+// level (vs far above every speed of the record), and an output delay on
+// every sensor is the input delay inside this loop (the delay commutes with
+// the plant). Before, the verdict was stribeck_friction (Fs at the true Fc,
+// vs 409 rad/s) with a 6.08 ms output delay; each container must now lower
+// the set's gap by the margin against its contained effect in its place.
+TEST(GapBenchFamilies, a_container_in_a_selected_set_gives_way_to_its_restriction)
+{
+    const Family& f = family("servo");
+    BenchOptions opt;
+    opt.family = "servo";
+    opt.seed = 7;
+    const BenchCase c = f.draw(opt, 33);
+    std::map<std::string, double> truth;
+    for (const TruthEffect& t : c.truth)
+        for (const TruthParam& p : t.params) truth[t.effect + "." + p.name] = p.value;
+    ASSERT_EQ(truth.size(), 2u);
+    ASSERT_TRUE(truth.count("coulomb_friction.Fc") && truth.count("input_delay.delay_s"));
+    const CaseRun r = f.run(opt, c);
+    std::map<std::string, double> found;
+    for (const EffectInstance& e : r.result.verdict.effects) {
+        const std::vector<std::string> pn = param_names(e.kind, r.result.outputs, e.site);
+        for (size_t j = 0; j < pn.size(); ++j) found[effect_name(e.kind) + "." + pn[j]] = e.params[j];
+    }
+    ASSERT_EQ(r.result.verdict.effects.size(), 2u) << result_json(r.result)["verdict"].dump();
+    EXPECT_EQ(r.result.verdict.effects[0].kind, Effect::coulomb_friction) << result_json(r.result)["verdict"].dump();
+    for (const auto& kv : truth) {
+        ASSERT_TRUE(found.count(kv.first)) << kv.first << " in " << result_json(r.result)["verdict"].dump();
+        EXPECT_NEAR(found[kv.first], kv.second, 0.05 * kv.second) << kv.first;
+    }
+    EXPECT_GE(r.result.verdict.shrink, 0.8);
+}
+
 // The nominal document of each family replays its effect-free record to the
 // sensor noise: without the effect, the gap is the noise (0.3 % of the
 // signal's std, servo position 0.02 % of its tone), and the verdict is none.

@@ -117,8 +117,8 @@ nlohmann::json result_json(const GapResult& R)
                       {"gap", "sqrt(mean over outputs of nrmse^2) on held-out data"},
                       {"shrink", "1 - gap_after/gap_before"},
                       {"score", "shrink - 0.005 * fitted parameters"},
-                      {"nesting", "stribeck_friction ranks above coulomb_friction, mode_shift above fractional_damping and unmodelled_mode (not at a sensor), only if its gap is >= 5 % (relative) lower; a verdict with unmodelled_mode and mode_shift names unmodelled_mode first"},
-                      {"forward_selection", "add the best-scoring effect, refit jointly, keep it while the gap falls by >= 5 % (relative) and the score rises; never add an effect holding the same term as one in the set (coulomb_friction and stribeck_friction)"},
+                      {"nesting", "stribeck_friction ranks above coulomb_friction, mode_shift above fractional_damping and unmodelled_mode (not at a sensor), output_delay above input_delay, only if its gap is >= 5 % (relative) lower, alone and within a selected set (the contained effect fitted in the container's place); a verdict with unmodelled_mode and mode_shift names unmodelled_mode first"},
+                      {"forward_selection", "add the best-scoring effect, refit jointly, keep it while the gap falls by >= 5 % (relative) and the score rises; after each addition drop an effect without which the set, refitted, has a gap the set does not undercut by 5 % or a score at least the set's; never add an effect holding the same term as one in the set (coulomb_friction and stribeck_friction)"},
                       {"continuation", "a candidate that lowers the nominal's fit cost by < 10 % is fitted again by continuation in record length when the nominal's misfit is > 2 x the residual's white-noise cost and no single fit explained half of the part above it"}};
     j["data"] = {{"model", R.model_name}, {"fit", R.data_source}, {"held_out", R.eval_source},
                  {"fit_samples", R.fit_samples}, {"held_out_samples", R.eval_samples}, {"Ts", R.Ts},

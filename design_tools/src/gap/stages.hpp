@@ -250,6 +250,13 @@ void where(const Baseline& B, const NominalModel& model, const Signals& data, Ga
 // belt, held-out shrink 55.3 % against mode_shift's 54.5 % by the belt,
 // f 13.05 Hz for 13.10).
 //
+// The nested pairs {contained, container} the rule applies to (which.cpp
+// to the single candidates; how_far.cpp to each effect of a selected set).
+inline constexpr std::pair<Effect, Effect> kNestedPairs[] = {{Effect::coulomb_friction, Effect::stribeck_friction},
+                                                             {Effect::fractional_damping, Effect::mode_shift},
+                                                             {Effect::unmodelled_mode, Effect::mode_shift},
+                                                             {Effect::input_delay, Effect::output_delay}};
+
 // `list` holds single-effect entries, best first; report_of(entry) is its
 // FitReport. Reorders the contained and the container, nothing else.
 template <class List, class ReportOf>

@@ -296,10 +296,7 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
                   return a.first.score > b.first.score;
               });
     // Nested effects (stages.hpp nested_rule).
-    for (const std::pair<Effect, Effect>& n : {std::pair<Effect, Effect>{Effect::coulomb_friction, Effect::stribeck_friction},
-                                               {Effect::fractional_damping, Effect::mode_shift},
-                                               {Effect::unmodelled_mode, Effect::mode_shift},
-                                               {Effect::input_delay, Effect::output_delay}}) {
+    for (const std::pair<Effect, Effect>& n : kNestedPairs) {
         nested_rule(R.candidates, [](const FitReport& f) -> const FitReport& { return f; }, n.first, n.second, opt.margin);
         nested_rule(singles, [](const std::pair<FitReport, EffectSetup>& p) -> const FitReport& { return p.first; }, n.first,
                     n.second, opt.margin);
