@@ -326,6 +326,33 @@ std::vector<std::string> family_outputs(const std::string& f)
     return f == "servo" ? std::vector<std::string>{"position", "velocity"} : std::vector<std::string>{"y"};
 }
 
+BenchOptions family_options(const std::string& family, std::uint64_t seed)
+{
+    BenchOptions opt;
+    opt.family = family;
+    opt.seed = seed;
+    return opt;
+}
+
+// A case's drawn truth and a verdict's parameters, each as effect.param -> value.
+std::map<std::string, double> truth_params(const BenchCase& c)
+{
+    std::map<std::string, double> truth;
+    for (const TruthEffect& t : c.truth)
+        for (const TruthParam& p : t.params) truth[t.effect + "." + p.name] = p.value;
+    return truth;
+}
+
+std::map<std::string, double> verdict_params(const GapResult& g)
+{
+    std::map<std::string, double> found;
+    for (const EffectInstance& e : g.verdict.effects) {
+        const std::vector<std::string> pn = param_names(e.kind, g.outputs, e.site);
+        for (size_t j = 0; j < pn.size(); ++j) found[effect_name(e.kind) + "." + pn[j]] = e.params[j];
+    }
+    return found;
+}
+
 }  // namespace
 
 // Each family draws every one of its labels once per round, a new plant per
@@ -406,13 +433,9 @@ TEST(GapBenchFamilies, a_plant_that_cannot_show_the_drawn_effect_is_redrawn)
 TEST(GapBenchFamilies, a_symmetric_restriction_is_released_beside_a_second_effect)
 {
     const Family& f = family("servo");
-    BenchOptions opt;
-    opt.family = "servo";
-    opt.seed = 7;
+    const BenchOptions opt = family_options("servo", 7);
     const BenchCase c = f.draw(opt, 19);
-    std::map<std::string, double> truth;
-    for (const TruthEffect& t : c.truth)
-        for (const TruthParam& p : t.params) truth[t.effect + "." + p.name] = p.value;
+    std::map<std::string, double> truth = truth_params(c);
     ASSERT_EQ(truth.size(), 3u) << "the case draws a dead zone and viscous friction";
     ASSERT_TRUE(truth.count("deadzone.lower") && truth.count("deadzone.upper") && truth.count("viscous_friction.Fv"));
     // Asymmetric enough that a symmetric pair cannot hold both edges within 10 %.
@@ -422,11 +445,7 @@ TEST(GapBenchFamilies, a_symmetric_restriction_is_released_beside_a_second_effec
     nlohmann::json doc = r.nominal;
     doc["gap"]["noise"] = {{"position", c.plant.at("sigma_pos")}, {"velocity", c.plant.at("sigma_vel")}};
     const GapResult g = diagnose(nominal_from_json(doc, r.data.Ts, ".", r.data.Ts * double(r.data.samples())), r.data, nullptr, GapOptions());
-    std::map<std::string, double> found;
-    for (const EffectInstance& e : g.verdict.effects) {
-        const std::vector<std::string> pn = param_names(e.kind, g.outputs, e.site);
-        for (size_t j = 0; j < pn.size(); ++j) found[effect_name(e.kind) + "." + pn[j]] = e.params[j];
-    }
+    std::map<std::string, double> found = verdict_params(g);
     ASSERT_EQ(g.verdict.effects.size(), 2u) << result_json(g)["verdict"].dump();
     for (const auto& kv : truth) {
         ASSERT_TRUE(found.count(kv.first)) << kv.first << " in " << result_json(g)["verdict"].dump();
@@ -446,9 +465,7 @@ TEST(GapBenchFamilies, a_symmetric_restriction_is_released_beside_a_second_effec
 TEST(GapBenchFamilies, an_effect_the_joint_refit_made_idle_leaves_the_verdict)
 {
     const Family& f = family("servo");
-    BenchOptions opt;
-    opt.family = "servo";
-    opt.seed = 7;
+    const BenchOptions opt = family_options("servo", 7);
     const BenchCase c = f.draw(opt, 19);
     const CaseRun r = f.run(opt, c);
     ASSERT_FALSE(r.result.verdict.effects.empty());
@@ -476,21 +493,13 @@ TEST(GapBenchFamilies, an_effect_the_joint_refit_made_idle_leaves_the_verdict)
 TEST(GapBenchFamilies, a_container_in_a_selected_set_gives_way_to_its_restriction)
 {
     const Family& f = family("servo");
-    BenchOptions opt;
-    opt.family = "servo";
-    opt.seed = 7;
+    const BenchOptions opt = family_options("servo", 7);
     const BenchCase c = f.draw(opt, 33);
-    std::map<std::string, double> truth;
-    for (const TruthEffect& t : c.truth)
-        for (const TruthParam& p : t.params) truth[t.effect + "." + p.name] = p.value;
+    std::map<std::string, double> truth = truth_params(c);
     ASSERT_EQ(truth.size(), 2u);
     ASSERT_TRUE(truth.count("coulomb_friction.Fc") && truth.count("input_delay.delay_s"));
     const CaseRun r = f.run(opt, c);
-    std::map<std::string, double> found;
-    for (const EffectInstance& e : r.result.verdict.effects) {
-        const std::vector<std::string> pn = param_names(e.kind, r.result.outputs, e.site);
-        for (size_t j = 0; j < pn.size(); ++j) found[effect_name(e.kind) + "." + pn[j]] = e.params[j];
-    }
+    std::map<std::string, double> found = verdict_params(r.result);
     ASSERT_EQ(r.result.verdict.effects.size(), 2u) << result_json(r.result)["verdict"].dump();
     EXPECT_EQ(r.result.verdict.effects[0].kind, Effect::coulomb_friction) << result_json(r.result)["verdict"].dump();
     for (const auto& kv : truth) {
