@@ -179,12 +179,13 @@ void verdict_status(GapResult& R, double margin, bool at_noise_floor, double fit
     }
 }
 
-// Forward selection does not add an effect to a set holding one with the
-// same term (same_term, effects.hpp).
-bool overlaps(const std::vector<EffectSetup>& set, const EffectSetup& e)
+// Whether `e` holds the same term (same_term, effects.hpp) as an effect of
+// the set other than its effect `except`: forward selection does not add
+// it, nor put it in another effect's place.
+bool holds_term_of(const std::vector<EffectSetup>& set, const EffectSetup& e, size_t except = size_t(-1))
 {
-    for (const EffectSetup& s : set)
-        if (same_term(s.kind, s.site, e.kind, e.site)) return true;
+    for (size_t k = 0; k < set.size(); ++k)
+        if (k != except && same_term(set[k].kind, set[k].site, e.kind, e.site)) return true;
     return false;
 }
 
@@ -206,6 +207,19 @@ std::optional<EffectSetup> released(const EffectSetup& es)
     }
     if (!any) return std::nullopt;
     return full;
+}
+
+// A single candidate's set-up started at its single fit: that start alone,
+// or ahead of its own starts (`with_grid`).
+EffectSetup from_single(const std::pair<FitReport, EffectSetup>& single, const FitProblem& base_problem, bool with_grid)
+{
+    EffectSetup es = single.second;
+    FitProblem solo = base_problem;
+    solo.effects = {es};
+    const std::vector<double> start = normalized(solo, single.first.effects);
+    if (!with_grid) es.starts.clear();
+    es.starts.insert(es.starts.begin(), start);
+    return es;
 }
 
 // The set without its effect `drop`, refined from the set's values (theta:
@@ -313,16 +327,8 @@ void restrict_nested(FitProblem& cur, std::vector<double>& theta, FitReport& bes
                     in = &s;
                     break;
                 }
-            if (!in || in->first.effects.size() != 1) continue;
-            bool clash = false;
-            for (size_t k = 0; k < cur.effects.size(); ++k)
-                clash = clash || (k != i && same_term(cur.effects[k].kind, cur.effects[k].site, in->second.kind, in->second.site));
-            if (clash) continue;
-            EffectSetup es = in->second;
-            FitProblem solo = base_problem;
-            solo.effects = {es};
-            es.starts.insert(es.starts.begin(), normalized(solo, in->first.effects));
-            Reduced r = replaced(cur, theta, i, es, E, opt);
+            if (!in || in->first.effects.size() != 1 || holds_term_of(cur.effects, in->second, i)) continue;
+            Reduced r = replaced(cur, theta, i, from_single(*in, base_problem, true), E, opt);
             if (best.gap <= (1.0 - opt.margin) * r.report.gap) continue;  // the container earns its place
             cur = std::move(r.problem);
             theta = std::move(r.outcome.theta);
@@ -356,16 +362,10 @@ void swap_look_alikes(FitProblem& cur, std::vector<double>& theta, FitReport& be
         std::optional<Reduced> pick;
         for (const auto& s : singles) {
             if (s.first.effects.size() != 1 || s.first.shrink < own->shrink - opt.margin) continue;
-            bool clash = false;  // in the set already, or holding a term of another effect of it
-            for (size_t k = 0; k < cur.effects.size(); ++k)
-                clash = clash || (cur.effects[k].kind == s.second.kind && cur.effects[k].site == s.second.site) ||
-                        (k != i && same_term(cur.effects[k].kind, cur.effects[k].site, s.second.kind, s.second.site));
-            if (clash) continue;
-            EffectSetup es = s.second;
-            FitProblem solo = base_problem;
-            solo.effects = {es};
-            es.starts.insert(es.starts.begin(), normalized(solo, s.first.effects));
-            Reduced r = replaced(cur, theta, i, es, E, opt);
+            bool in_set = false;
+            for (const EffectSetup& e : cur.effects) in_set = in_set || (e.kind == s.second.kind && e.site == s.second.site);
+            if (in_set || holds_term_of(cur.effects, s.second, i)) continue;
+            Reduced r = replaced(cur, theta, i, from_single(s, base_problem, true), E, opt);
             if (r.report.score > best.score && (!pick || r.report.score > pick->report.score)) pick = std::move(r);
         }
         if (!pick) continue;
@@ -501,14 +501,11 @@ void how_far(const std::vector<std::pair<FitReport, EffectSetup>>& singles, cons
             FitProblem pick_prob;
             int tried = 0;
             for (size_t i = 0; i < singles.size() && tried < 3; ++i) {
-                if (used[i] || singles[i].first.score <= 0 || overlaps(cur.effects, singles[i].second)) continue;
+                if (used[i] || singles[i].first.score <= 0 || holds_term_of(cur.effects, singles[i].second)) continue;
                 ++tried;
                 // The new effect starts from its single fit, the others from the current set.
                 FitProblem P = cur;
-                EffectSetup es = singles[i].second;
-                FitProblem solo = base_problem;
-                solo.effects = {es};
-                es.starts = {normalized(solo, singles[i].first.effects)};
+                const EffectSetup es = from_single(singles[i], base_problem, false);
                 P.effects.push_back(es);
                 FitOutcome o = fit_set(P, theta, opt.max_iterations / 2);
                 FitReport rep = make_report(P, o, E, opt.param_penalty);
