@@ -222,13 +222,22 @@ EffectSetup from_single(const std::pair<FitReport, EffectSetup>& single, const F
     return es;
 }
 
-// The set without its effect `drop`, refined from the set's values (theta:
-// normalized, one entry per ParamSpec of each effect in turn).
+// A set changed from the selected one (an effect dropped or replaced),
+// fitted and reported; adopt() makes it the selection's current set.
 struct Reduced {
     FitProblem problem;
     FitOutcome outcome;
     FitReport report;
+    void adopt(FitProblem& cur, std::vector<double>& theta, FitReport& best)
+    {
+        cur = std::move(problem);
+        theta = std::move(outcome.theta);
+        best = std::move(report);
+    }
 };
+
+// The set without its effect `drop`, refined from the set's values (theta:
+// normalized, one entry per ParamSpec of each effect in turn).
 Reduced without(const FitProblem& cur, const std::vector<double>& theta, size_t drop, const Evaluator& E,
                 const GapOptions& opt)
 {
@@ -268,9 +277,7 @@ void drop_idle(FitProblem& cur, std::vector<double>& theta, FitReport& best, con
             if (!pick || r.report.score > pick->report.score) pick = std::move(r);
         }
         if (!pick) return;
-        cur = std::move(pick->problem);
-        theta = std::move(pick->outcome.theta);
-        best = std::move(pick->report);
+        pick->adopt(cur, theta, best);
     }
 }
 
@@ -308,8 +315,8 @@ Reduced replaced(const FitProblem& cur, const std::vector<double>& theta, size_t
 // container to its restriction (Stribeck with vs far above every speed of
 // the record, a constant level Fs: Coulomb friction). The contained effect
 // is fitted in the container's place from its own starts and from its
-// single fit (its best site among `singles`); a sensor mode is no
-// restriction of mode_shift (nested_rule). Without it gap-bench seed 7
+// single fit (its best site among `singles`; a sensor mode is no
+// restriction of mode_shift, nested_in). Without it gap-bench seed 7
 // servo case 33's Coulomb friction with a 6 ms input delay was named
 // stribeck_friction (Fc 0.369 +- 0.20, Fs 0.383, vs 409 rad/s: Coulomb at
 // Fs, true Fc 0.385) beside a 6.08 ms output delay; now Coulomb 0.384 with
@@ -323,16 +330,14 @@ void restrict_nested(FitProblem& cur, std::vector<double>& theta, FitReport& bes
             if (cur.effects[i].kind != n.second) continue;
             const std::pair<FitReport, EffectSetup>* in = nullptr;
             for (const auto& s : singles)
-                if (s.second.kind == n.first && !(n.first == Effect::unmodelled_mode && s.second.site == Site::sensor)) {
+                if (nested_in(s.second.kind, s.second.site, n.second, n)) {
                     in = &s;
                     break;
                 }
             if (!in || in->first.effects.size() != 1 || holds_term_of(cur.effects, in->second, i)) continue;
             Reduced r = replaced(cur, theta, i, from_single(*in, base_problem, true), E, opt);
             if (best.gap <= (1.0 - opt.margin) * r.report.gap) continue;  // the container earns its place
-            cur = std::move(r.problem);
-            theta = std::move(r.outcome.theta);
-            best = std::move(r.report);
+            r.adopt(cur, theta, best);
             break;
         }
 }
@@ -369,9 +374,7 @@ void swap_look_alikes(FitProblem& cur, std::vector<double>& theta, FitReport& be
             if (r.report.score > best.score && (!pick || r.report.score > pick->report.score)) pick = std::move(r);
         }
         if (!pick) continue;
-        cur = std::move(pick->problem);
-        theta = std::move(pick->outcome.theta);
-        best = std::move(pick->report);
+        pick->adopt(cur, theta, best);
     }
 }
 

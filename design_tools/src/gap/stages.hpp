@@ -257,6 +257,14 @@ inline constexpr std::pair<Effect, Effect> kNestedPairs[] = {{Effect::coulomb_fr
                                                              {Effect::unmodelled_mode, Effect::mode_shift},
                                                              {Effect::input_delay, Effect::output_delay}};
 
+// Whether an effect of kind `contained` at `site` is the restriction of
+// `container` under kNestedPairs' pair (contained, container): a mode in a
+// sensor's reading moves no plant mode, so mode_shift does not contain it.
+inline bool nested_in(Effect contained, Site site, Effect container, const std::pair<Effect, Effect>& pair)
+{
+    return contained == pair.first && container == pair.second && !(contained == Effect::unmodelled_mode && site == Site::sensor);
+}
+
 // `list` holds single-effect entries, best first; report_of(entry) is its
 // FitReport. Reorders the contained and the container, nothing else.
 template <class List, class ReportOf>
@@ -266,10 +274,9 @@ void nested_rule(List& list, ReportOf report_of, Effect contained, Effect contai
     for (size_t i = 0; i < list.size(); ++i) {
         const FitReport& f = report_of(list[i]);
         if (f.effects.size() != 1) continue;
-        // A mode in a sensor's reading moves no plant mode: mode_shift does
-        // not contain it, the two rank by their scores.
-        if (f.effects[0].kind == contained && !(contained == Effect::unmodelled_mode && f.effects[0].site == Site::sensor))
-            ic = int(i);
+        // A mode in a sensor's reading is no restriction (nested_in): the
+        // two rank by their scores.
+        if (nested_in(f.effects[0].kind, f.effects[0].site, container, {contained, container})) ic = int(i);
         if (f.effects[0].kind == container) is = int(i);
     }
     if (ic < 0 || is < 0) return;
