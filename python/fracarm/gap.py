@@ -176,7 +176,7 @@ class GapResult:
 def diagnose(model: Union[Model, dict, str, os.PathLike], data: Record, validate: Optional[Record] = None,
              effects: Optional[Sequence[str]] = None, inputs: Optional[Sequence[str]] = None,
              outputs: Optional[Sequence[str]] = None, holdout: float = 0.3, command: Optional[str] = None,
-             threads: int = 0) -> GapResult:
+             threads: int = 0, loop_feedback: str = "auto") -> GapResult:
     """Diagnoses the gap between ``model`` and the record ``data``.
 
     model: a :class:`~fracarm.models.Model`, a document dict or a path to one
@@ -189,6 +189,11 @@ def diagnose(model: Union[Model, dict, str, os.PathLike], data: Record, validate
     threads: workers for the independent candidate fits (0: one per core, as
       the CLI); the result does not depend on it. The fleet passes 1, since
       it runs one record per worker core.
+    loop_feedback: what the replayed controller of a closed-loop nominal reads:
+      "model" (its outputs: the loop simulated), "measured" (the record's
+      columns of them: the plant replayed on the command the machine got) or
+      "auto" (model, then measured when that names no effect;
+      docs/gap.md "Loop feedback"), as the CLI's --loop-feedback.
     command: recorded in result.json and the report (default: the equivalent
       ``fracdesign gap`` command line for path arguments, else a description).
 
@@ -197,7 +202,9 @@ def diagnose(model: Union[Model, dict, str, os.PathLike], data: Record, validate
     """
     if int(threads) < 0:
         raise UsageError("threads must be >= 0 (0: one per core)")
-    opts: Dict[str, Any] = {"holdout": float(holdout), "threads": int(threads)}
+    if loop_feedback not in ("auto", "model", "measured"):
+        raise UsageError("--loop-feedback must be auto, model or measured, got '%s'" % loop_feedback)
+    opts: Dict[str, Any] = {"holdout": float(holdout), "threads": int(threads), "loop_feedback": loop_feedback}
     if effects is not None:
         known = set(effect_names()) | {"none"}
         for e in effects:
@@ -255,4 +262,6 @@ def _command(m: dict, d: dict, v: Optional[dict], opts: Dict[str, Any]) -> str:
             cmd += " --%s %s" % (key, ",".join(opts[key]))
     if opts["holdout"] != 0.3:
         cmd += " --holdout %s" % repr(opts["holdout"])
+    if opts.get("loop_feedback", "auto") != "auto":
+        cmd += " --loop-feedback %s" % opts["loop_feedback"]
     return cmd

@@ -39,6 +39,13 @@ py::tuple diagnose(const py::dict& model, const py::dict& data, const py::object
     if (!(opt.holdout > 0 && opt.holdout < 1)) throw py::value_error("--holdout must be in (0, 1)");
     if (options.contains("threads")) opt.threads = options["threads"].cast<int>();
     if (opt.threads < 0) throw py::value_error("threads must be >= 0 (0: one per core)");
+    if (options.contains("loop_feedback")) {
+        try {
+            opt.loop_feedback = gap::loop_feedback_from_name(options["loop_feedback"].cast<std::string>());
+        } catch (const std::invalid_argument& ex) {
+            throw py::value_error(ex.what());
+        }
+    }
     if (options.contains("effects")) {
         opt.effects.clear();
         for (const std::string& e : options["effects"].cast<std::vector<std::string>>()) opt.effects.push_back(gap::effect_from_name(e));

@@ -78,6 +78,8 @@ def test_errors_carry_the_cli_messages(record, demo_nominal, tmp_path):
          FracarmError, 1),
         (dict(model=demo_nominal, data=record, holdout=1.5), ["--model", demo_nominal, "--data", record, "--holdout", "1.5"],
          UsageError, 2),
+        (dict(model=demo_nominal, data=record, loop_feedback="simulated"),
+         ["--model", demo_nominal, "--data", record, "--loop-feedback", "simulated"], UsageError, 2),
     ]
     for kw, args, exc, status in cases:
         with pytest.raises(exc) as e:

@@ -142,6 +142,50 @@ TEST(GapCli, refuses_a_threads_count_that_is_not_a_whole_number)
     }
 }
 
+TEST(GapCli, refuses_a_loop_feedback_that_is_not_auto_model_or_measured)
+{
+    const fs::path d = workdir();
+    write(d / "model.json", kModel);
+    write(d / "data.csv", csv("t,u,x,v", 300));
+    const fs::path out = d / "loop_feedback_bad";
+    const Outcome r = run("--model " + (d / "model.json").string() + " --data " + (d / "data.csv").string() +
+                          " --loop-feedback simulated --out " + out.string());
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.err.find("--loop-feedback must be auto, model or measured, got 'simulated'"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+}
+
+// --loop-feedback measured feeds the replayed controller the record's
+// columns of the outputs it reads: a record without one is refused naming
+// it, and nothing is written.
+TEST(GapCli, refuses_measured_loop_feedback_without_the_outputs_the_controller_reads)
+{
+    const fs::path d = workdir();
+    // The mass-spring-damper under a PD on x and v (a discrete static gain).
+    nlohmann::json m = nlohmann::json::parse(kModel);
+    m["gap"]["closed_loop"] = {{"references", {"r"}}, {"measured", {"x", "v"}},
+                               {"controller", {{"time", "discrete"}, {"Ts", 0.01}, {"A", {{0.0}}}, {"B", {{0.0, 0.0, 0.0}}},
+                                               {"C", {{0.0}}}, {"D", {{40.0, -40.0, -4.0}}}}}};
+    write(d / "loop_model.json", m.dump());
+    std::ostringstream o;
+    o << "t,r,x\n";
+    for (int k = 0; k < 300; ++k) o << 0.01 * k << "," << (k >= 20 ? 1.0 : 0.0) << "," << (k >= 20 ? 0.6 : 0.0) + 0.01 * std::sin(0.3 * k) << "\n";
+    write(d / "loop.csv", o.str());
+    const fs::path out = d / "loop_feedback_measured";
+    const Outcome r = run("--model " + (d / "loop_model.json").string() + " --data " + (d / "loop.csv").string() +
+                          " --loop-feedback measured --out " + out.string());
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.err.find("the controller reads the output 'v', which is not a column of"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+    // The default (auto) simulates the loop, which needs no column of v.
+    const fs::path out2 = d / "loop_feedback_auto";
+    const Outcome a = run("--model " + (d / "loop_model.json").string() + " --data " + (d / "loop.csv").string() +
+                          " --effects gain_error --out " + out2.string());
+    EXPECT_EQ(a.status, 0) << a.err;
+    EXPECT_TRUE(fs::exists(out2 / "result.json"));
+}
+
 TEST(GapCli, one_worker_and_two_give_the_same_result_json)
 {
     const fs::path d = workdir();

@@ -343,6 +343,13 @@ std::map<std::string, double> truth_params(const BenchCase& c)
     return truth;
 }
 
+// The case's record diagnosed again against `doc` (its nominal document,
+// changed by the test) with the options `o`.
+GapResult rediagnose(const CaseRun& r, const nlohmann::json& doc, const GapOptions& o)
+{
+    return diagnose(nominal_from_json(doc, r.data.Ts, ".", r.data.Ts * double(r.data.samples())), r.data, nullptr, o);
+}
+
 std::map<std::string, double> verdict_params(const GapResult& g)
 {
     std::map<std::string, double> found;
@@ -444,7 +451,7 @@ TEST(GapBenchFamilies, a_symmetric_restriction_is_released_beside_a_second_effec
     const CaseRun r = f.run(opt, c);
     nlohmann::json doc = r.nominal;
     doc["gap"]["noise"] = {{"position", c.plant.at("sigma_pos")}, {"velocity", c.plant.at("sigma_vel")}};
-    const GapResult g = diagnose(nominal_from_json(doc, r.data.Ts, ".", r.data.Ts * double(r.data.samples())), r.data, nullptr, GapOptions());
+    const GapResult g = rediagnose(r, doc, GapOptions());
     std::map<std::string, double> found = verdict_params(g);
     ASSERT_EQ(g.verdict.effects.size(), 2u) << result_json(g)["verdict"].dump();
     for (const auto& kv : truth) {
@@ -507,6 +514,11 @@ TEST(GapBenchFamilies, a_container_in_a_selected_set_gives_way_to_its_restrictio
         EXPECT_NEAR(found[kv.first], kv.second, 0.05 * kv.second) << kv.first;
     }
     EXPECT_GE(r.result.verdict.shrink, 0.8);
+    // The loop simulated explains the gap: no second pass on the measured
+    // outputs (diagnosis.cpp, LoopFeedback::automatic), and the result says so.
+    EXPECT_EQ(r.result.confidence.status, "explained");
+    EXPECT_EQ(r.result.loop_feedback, "model outputs");
+    EXPECT_EQ(r.result.loop_feedback_note, "the controller read the model's outputs (a closed-loop simulation)");
 }
 
 // A look-alike swapped in beside the set (how_far.cpp swap_look_alikes): the
@@ -533,6 +545,45 @@ TEST(GapBenchFamilies, a_look_alike_of_a_selected_effect_is_tried_in_its_place)
         EXPECT_NEAR(found[kv.first], kv.second, 0.05 * std::fabs(kv.second)) << kv.first;
     }
     EXPECT_GE(r.result.verdict.shrink, 0.8);
+}
+
+// A loop that cycles is diagnosed on the command the machine got
+// (diagnosis.cpp, LoopFeedback::automatic): a lightly damped mode in series
+// with a servo axis's drive under the clipped PD (servo seed 7, case 20)
+// puts the loop in a limit cycle. Replayed as a closed-loop simulation
+// (the controller reading the model's outputs), the right mode cycles with
+// another phase and scores worse than none: the first pass names none.
+// With the controller reading the measured outputs, the plant is replayed
+// on the recorded command, and the mode comes out with its frequency.
+TEST(GapBenchFamilies, a_limit_cycling_loop_is_diagnosed_on_the_command_the_machine_got)
+{
+    const Family& f = family("servo");
+    const BenchOptions opt = family_options("servo", 7);
+    const BenchCase c = f.draw(opt, 20);
+    const std::map<std::string, double> truth = truth_params(c);
+    ASSERT_EQ(truth.size(), 1u);
+    ASSERT_TRUE(truth.count("unmodelled_mode.f_hz"));
+    const CaseRun r = f.run(opt, c);
+    ASSERT_FALSE(r.result.verdict.effects.empty()) << result_json(r.result)["verdict"].dump();
+    EXPECT_EQ(r.result.verdict.effects[0].kind, Effect::unmodelled_mode);
+    EXPECT_EQ(r.result.verdict.effects[0].site, Site::force_input);  // in series at the drive
+    std::map<std::string, double> found = verdict_params(r.result);
+    EXPECT_NEAR(found["unmodelled_mode.f_hz"], truth.at("unmodelled_mode.f_hz"), 0.01 * truth.at("unmodelled_mode.f_hz"));
+    EXPECT_GE(r.result.verdict.shrink, 0.8);
+    EXPECT_EQ(r.result.loop_feedback, "measured outputs");
+    const nlohmann::json j = result_json(r.result);
+    EXPECT_EQ(j["data"]["loop_feedback"], "measured outputs");
+    EXPECT_NE(j["data"]["loop_feedback_note"].get<std::string>().find("verdict was none"), std::string::npos)
+        << j["data"].dump();
+
+    // The first pass alone (--loop-feedback model) names none.
+    GapOptions g;
+    g.outputs = r.result.outputs;
+    g.max_iterations = opt.max_iterations;
+    g.loop_feedback = LoopFeedback::model;
+    const GapResult sim = rediagnose(r, r.nominal, g);
+    EXPECT_TRUE(sim.verdict.effects.empty()) << result_json(sim)["verdict"].dump();
+    EXPECT_EQ(sim.loop_feedback, "model outputs");
 }
 
 // The nominal document of each family replays its effect-free record to the

@@ -56,7 +56,7 @@ void write_atomically(const fs::path& dir, const std::vector<std::pair<std::stri
 int run_gap(const std::vector<std::string>& argv)
 {
     Args args(argv, {"json"});
-    args.check_known({"model", "data", "validate", "inputs", "outputs", "out", "json", "effects", "holdout", "threads"});
+    args.check_known({"model", "data", "validate", "inputs", "outputs", "out", "json", "effects", "holdout", "threads", "loop-feedback"});
     const std::string model_path = args.str("model"), data_path = args.str("data");
     const fs::path out = args.str("out", "gap_out");
     gap::GapOptions opt;
@@ -71,6 +71,13 @@ int run_gap(const std::vector<std::string>& argv)
     if (!(threads >= 0 && threads <= 256 && threads == std::floor(threads)))
         throw UsageError("--threads must be a whole number in 0..256 (0: one per core), got " + args.str("threads"));
     opt.threads = int(threads);
+    // --loop-feedback: what the replayed controller of a closed-loop nominal
+    // reads (GapOptions::loop_feedback, docs/gap.md "Loop feedback").
+    try {
+        opt.loop_feedback = gap::loop_feedback_from_name(args.str("loop-feedback", "auto"));
+    } catch (const std::invalid_argument& ex) {
+        throw UsageError(ex.what());
+    }
     if (args.has("effects")) {
         opt.effects.clear();
         for (const std::string& e : split(args.str("effects"))) {
@@ -99,6 +106,7 @@ int run_gap(const std::vector<std::string>& argv)
     }
     char b[256];
     std::cout << "gap diagnosis of " << r.model_name << " on " << data_path << "\n  held out: " << r.eval_source << "\n";
+    if (!r.loop_feedback.empty()) std::cout << "  loop: " << r.loop_feedback_note << "\n";
     for (size_t c = 0; c < r.outputs.size(); ++c) {
         std::snprintf(b, sizeof b, "  %-20s nrmse before %.4g  after %.4g\n", r.outputs[c].c_str(), r.gap_before[c],
                       c < r.verdict.gap_after.size() ? r.verdict.gap_after[c] : r.gap_before[c]);
@@ -155,7 +163,8 @@ int run_gap(const std::vector<std::string>& argv)
 CommandRegistrar reg({"gap", "diagnose the sim-to-real gap: where, which unmodelled effect, how far it shrinks",
                       "usage: fracdesign gap --model nominal.json --data run.csv [--validate other.csv]\n"
                       "                      [--inputs u1,..] [--outputs y1,..] [--out DIR] [--json]\n"
-                      "                      [--effects e1,e2,..] [--holdout 0.3] [--threads N]\n\n"
+                      "                      [--effects e1,e2,..] [--holdout 0.3] [--threads N]\n"
+                      "                      [--loop-feedback auto|model|measured]\n\n"
                       "Replays the nominal model (a \"frac.model\" state space; closed loop when its\n"
                       "gap.closed_loop section gives the controller) on the recorded data, locates the\n"
                       "residual (output, frequency band, nominal modes, time windows with the\n"
@@ -166,7 +175,12 @@ CommandRegistrar reg({"gap", "diagnose the sim-to-real gap: where, which unmodel
                       "the record is held out and never fitted. --threads N fits the independent\n"
                       "candidates on N workers (default 0: one per core; the result does not\n"
                       "depend on it). The verdict's status says whether the gap is at the stated\n"
-                      "noise floor, explained, partly explained or unexplained.\n\n"
+                      "noise floor, explained, partly explained or unexplained.\n"
+                      "Closed loop, the replayed controller reads the model's outputs (model); when\n"
+                      "that names no effect and the misfit is structured, auto (the\n"
+                      "default) diagnoses again with the controller reading the record's measured\n"
+                      "outputs (measured: the plant replayed on the command the machine got, so a\n"
+                      "limit cycle keeps its phase) and keeps that pass when it explains the gap.\n\n"
                       "Effects: input_delay output_delay coulomb_friction viscous_friction\n"
                       "  stribeck_friction backlash deadzone saturation fractional_damping\n"
                       "  unmodelled_mode gain_error sensor_offset quantization mode_shift (and none).\n"

@@ -142,7 +142,7 @@ std::vector<double> draws_rms(const Eigen::MatrixXd& draws)
 }  // namespace
 
 Baseline baseline(const NominalModel& model, const Signals& data, const Signals* validate, const GapOptions& opt,
-                  GapResult& R)
+                  GapResult& R, bool feed_measured)
 {
     Baseline B;
     R.model_name = model.name;
@@ -172,10 +172,10 @@ Baseline baseline(const NominalModel& model, const Signals& data, const Signals*
             noise_sd.push_back(it->second);
         }
     for (const Coupling& c : model.couplings) R.coupling_names.push_back(c.name);
-    B.fit_setup = make_replay_setup(model, data, opt.inputs, outs);
+    B.fit_setup = make_replay_setup(model, data, opt.inputs, outs, feed_measured);
     for (const PlantMode& pm : B.fit_setup.plant_modes) R.mode_names.push_back(plant_mode_name(pm));
     B.validated = validate != nullptr;
-    if (validate) B.eval_setup_v = make_replay_setup(model, *validate, opt.inputs, outs);
+    if (validate) B.eval_setup_v = make_replay_setup(model, *validate, opt.inputs, outs, feed_measured);
     const Eigen::Index N = B.N = data.samples();
     R.fit_samples = validate ? N : Eigen::Index(std::floor((1.0 - opt.holdout) * double(N)));
     R.eval_first = validate ? 0 : R.fit_samples;
@@ -206,7 +206,7 @@ Baseline baseline(const NominalModel& model, const Signals& data, const Signals*
     // The noise floor (gap.noise) in a closed loop: the noise-only residual,
     // over the fit rows (the fits' residual scale) and the evaluated rows.
     B.eval_noise_sd = noise_sd;
-    if (!noise_sd.empty() && model.closed_loop) {
+    if (!noise_sd.empty() && model.closed_loop && !feed_measured) {
         // Without a validation record both row ranges come from the same draws of the whole record.
         if (validate) {
             noise_sd = draws_rms(loop_noise_draws(model, B.fit_setup, nom, {{0, R.fit_samples}})[0]);
@@ -220,7 +220,8 @@ Baseline baseline(const NominalModel& model, const Signals& data, const Signals*
         }
         B.eval_noise_sd = draws_rms(B.eval_noise_draws);
     } else if (!noise_sd.empty()) {
-        // Open loop the noise-only residual is the stated white noise itself.
+        // Open loop (or the controller fed the measured outputs) the
+        // noise-only residual is the stated white noise itself.
         for (int d = 0; d < kLoopNoiseDraws; ++d) B.eval_noise_residual.push_back(white_draw(d, R.eval_samples, noise_sd));
     }
     // Each coupling's scale (FitContext::Sq, set per site by which()).

@@ -52,7 +52,7 @@ static Eigen::VectorXd initial_state(const NominalModel& m, ReplaySetup& s, cons
 }
 
 ReplaySetup make_replay_setup(const NominalModel& m, const Signals& data, const std::vector<std::string>& inputs,
-                              const std::vector<std::string>& outputs)
+                              const std::vector<std::string>& outputs, bool feed_measured)
 {
     ReplaySetup s;
     s.model = &m;
@@ -103,11 +103,24 @@ ReplaySetup make_replay_setup(const NominalModel& m, const Signals& data, const 
     }
     s.x0 = initial_state(m, s, data, outputs);
     s.plant_modes = resonant_plant_modes(m);
+    if (m.closed_loop && feed_measured) {
+        s.loop_measured.resize(N, Eigen::Index(m.loop.measured.size()));
+        for (size_t j = 0; j < m.loop.measured.size(); ++j) {
+            const std::string& o = m.outputs[size_t(m.loop.measured[j])];
+            if (!data.has(o))
+                throw std::runtime_error("model/data mismatch: the controller reads the output '" + o +
+                                         "', which is not a column of " + data.source +
+                                         "; a replay that feeds the controller the measured outputs needs it "
+                                         "(--loop-feedback model replays without it)");
+            s.loop_measured.col(Eigen::Index(j)) = data.col(o);
+        }
+    }
     if (m.closed_loop) {
         // The controller at the first sample: first references, measured outputs of x0.
         std::vector<double> r0(m.loop.references.size()), y0(m.loop.measured.size());
         for (size_t j = 0; j < r0.size(); ++j) r0[j] = s.exo(0, Eigen::Index(j));
-        for (size_t j = 0; j < y0.size(); ++j) y0[j] = m.C.row(m.loop.measured[j]).dot(s.x0);
+        for (size_t j = 0; j < y0.size(); ++j)
+            y0[j] = feed_measured ? s.loop_measured(0, Eigen::Index(j)) : m.C.row(m.loop.measured[j]).dot(s.x0);
         std::unique_ptr<Controller> c = m.loop.controller->clone();
         c->start(r0.data(), y0.data());
         s.controller0 = std::move(c);
@@ -585,7 +598,12 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
         if (m.closed_loop) {
             plant_outputs(false, k);
             for (int j = 0; j < nr; ++j) rk[size_t(j)] = s.exo(k, j);
-            for (size_t j = 0; j < ym.size(); ++j) ym[j] = ysens[size_t(m.loop.measured[j])];
+            // The outputs the controller reads: the model's (its sensors'
+            // effects applied), or the record's (ReplaySetup::loop_measured).
+            if (s.loop_measured.rows() > 0)
+                for (size_t j = 0; j < ym.size(); ++j) ym[j] = s.loop_measured(k, Eigen::Index(j));
+            else
+                for (size_t j = 0; j < ym.size(); ++j) ym[j] = ysens[size_t(m.loop.measured[j])];
             ctl->step(rk.data(), ym.data(), cvec.data());
             if (h_ctl.len == 0) h_ctl.init(nu, m.loop.delay_samples + 1, cvec.data());
             h_ctl.push(cvec.data());

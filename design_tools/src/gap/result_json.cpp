@@ -133,6 +133,15 @@ nlohmann::json result_json(const GapResult& R)
                                         "noise-free replay, and the limit at least the one-sided 99 % prediction bound of a draw's noise-only gap";
     }
     if (!R.realization.empty()) j["data"]["realization"] = R.realization;
+    if (!R.loop_feedback.empty()) {
+        j["data"]["loop_feedback"] = R.loop_feedback;
+        j["data"]["loop_feedback_note"] = R.loop_feedback_note;
+        j["criterion"]["loop_feedback"] =
+            "closed loop: the replayed controller reads the model's outputs; when that names nothing "
+            "(no_candidate, unexplained) and the nominal's misfit is > 2 x its white-noise cost, the "
+            "diagnosis is run again with the controller reading the measured outputs, and that pass is the result when "
+            "it explains the gap";
+    }
     j["skipped"] = R.skipped;
     j["seconds"] = R.seconds;
     return j;

@@ -215,8 +215,11 @@ struct Baseline {
 
 // Checks the inputs, splits the record, replays the nominal and refuses a
 // replay that diverges; fills R's description of the data and the split.
+// feed_measured: the replayed controller reads the measured outputs
+// (make_replay_setup); the sensors' noise then reaches the plant as it did
+// on the machine, so the noise floor is the stated std, as open loop.
 Baseline baseline(const NominalModel& model, const Signals& data, const Signals* validate, const GapOptions& opt,
-                  GapResult& R);
+                  GapResult& R, bool feed_measured = false);
 
 // ---- where.cpp ----------------------------------------------------------------
 

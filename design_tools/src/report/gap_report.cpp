@@ -68,6 +68,7 @@ std::string gap_report_html(const gap::GapResult& r, const nlohmann::json& j, co
     o << "<p>Model <b>" << html_escape(r.model_name) << "</b>; fitted on <code>" << html_escape(r.data_source)
       << "</code> (" << r.fit_samples << " samples); held out: <code>" << html_escape(r.eval_source) << "</code> ("
       << r.eval_samples << " samples); Ts = " << g4(r.Ts) << " s. Command: <code>" << html_escape(command) << "</code></p>\n";
+    if (!r.loop_feedback.empty()) o << "<p>Loop: " << html_escape(r.loop_feedback_note) << ".</p>\n";
     std::string verdict;
     for (const auto& e : j["verdict"]["effects"]) verdict += (verdict.empty() ? "" : " + ") + e.get<std::string>();
     o << "<h2>Verdict: " << html_escape(verdict) << "</h2>\n<p>Held-out gap (sqrt of the mean nrmse&sup2; over outputs) "

@@ -21,6 +21,19 @@
 namespace fracdesign {
 namespace gap {
 
+// What the controller of a closed-loop nominal reads in the replay
+// (docs/gap.md "Loop feedback"): `model`, the model's outputs (the loop is
+// simulated: every effect acts through the loop as on the machine);
+// `measured`, the record's columns of those outputs (the controller gives the
+// command the machine's controller gave, and the plant is replayed on it: a
+// limit cycle or a loop hunting on a play, a quantized sensor or a dead zone
+// keeps the record's phase instead of drifting off it); `automatic`, model
+// first and measured as the second pass of diagnose() (below).
+enum class LoopFeedback { automatic, model, measured };
+// "auto", "model" or "measured" (the CLI's --loop-feedback); std::invalid_argument
+// naming the value and the allowed ones otherwise.
+LoopFeedback loop_feedback_from_name(const std::string& name);
+
 struct GapOptions {
     std::vector<std::string> inputs;    // data columns driving the model (default: the model's names)
     std::vector<std::string> outputs;   // compared outputs (default: model outputs present in the data)
@@ -31,6 +44,7 @@ struct GapOptions {
     int max_effects = 3;                // forward selection depth
     int max_iterations = 30;            // Ceres iterations per start (half in forward selection)
     int threads = 0;                    // workers for the independent single fits (0: one per core); results do not depend on it
+    LoopFeedback loop_feedback = LoopFeedback::automatic;  // closed loop: what the replayed controller reads
     std::function<void(const std::string&)> progress;  // one line per finished fit (the CLI prints them on stderr)
 };
 
@@ -86,6 +100,9 @@ struct Window {
 struct GapResult {
     std::string model_name, data_source, eval_source;
     std::string realization;                        // the nominal's fractional realization (NominalModel::realization)
+    // Closed loop: what the replayed controller read ("model outputs" or
+    // "measured outputs"; "" open loop) and why (diagnose(), the second pass).
+    std::string loop_feedback, loop_feedback_note;
     double Ts = 0.0;
     std::vector<std::string> outputs;
     Units units;                                    // of the model's signals (gap.units)
@@ -182,6 +199,13 @@ constexpr double kFitPartShare = 0.8;
 // held-out gap is "partly_explained" (GapResult::Confidence::status).
 constexpr double kExplainedShrink = 0.5;
 
+// With LoopFeedback::automatic, a closed-loop record whose first pass (the
+// controller reads the model's outputs) names nothing (status no_candidate
+// or unexplained) and the nominal's
+// misfit structured (its fit cost above kStructuredMisfit x its white cost)
+// is diagnosed again with the controller reading the measured outputs; that
+// second pass is the result when its status is "explained", else the first
+// is, and GapResult::loop_feedback_note says what the other pass gave.
 GapResult diagnose(const NominalModel& model, const Signals& data, const Signals* validate, const GapOptions& opt);
 
 // result.json (schema "frac.gap", version 1; keys of issue 10 plus details).

@@ -243,6 +243,12 @@ struct ReplaySetup {
     // sensor's reading stands for its cell, so the quantization effect
     // compares the model with the cell around the reading (docs/gap.md).
     Eigen::MatrixXd measured;
+    // The record's columns of the outputs the controller reads
+    // (NominalModel::loop.measured, samples x their count) when the replay
+    // feeds the controller the measured outputs instead of the model's
+    // (GapOptions::loop_feedback, docs/gap.md "Loop feedback"); empty: the
+    // controller reads the model's outputs (a closed-loop simulation).
+    Eigen::MatrixXd loop_measured;
     // Phase of each gap.output_hold (model.holds): the document's, else the residue
     // modulo `every` of the samples at which the record's column changes most often
     // (a new reading), 0 when the output is no column or never changes.
@@ -259,9 +265,12 @@ struct ReplaySetup {
 // overrides the names, in model order), checks that every compared output is
 // a model output and a data column, and estimates the initial state from the
 // first measured sample (least squares through the compared outputs).
+// feed_measured (closed loop): the controller reads the record's columns of
+// its measured outputs (ReplaySetup::loop_measured), each of which must be
+// a column of `data`.
 // std::runtime_error with one clear message on a mismatch.
 ReplaySetup make_replay_setup(const NominalModel& m, const Signals& data, const std::vector<std::string>& inputs,
-                              const std::vector<std::string>& outputs);
+                              const std::vector<std::string>& outputs, bool feed_measured = false);
 
 struct ReplayTrace {
     Eigen::MatrixXd y;      // samples x compared outputs, as the sensors would read them
