@@ -140,7 +140,7 @@ nlohmann::json result_json(const GapResult& R)
             "closed loop: the replayed controller reads the model's outputs; when that names nothing "
             "(no_candidate, unexplained) and the nominal's misfit is > 2 x its white-noise cost, the "
             "diagnosis is run again with the controller reading the measured outputs, and that pass is the result when "
-            "it explains the gap";
+            "it explains the gap with every parameter identified";
     }
     j["skipped"] = R.skipped;
     j["seconds"] = R.seconds;

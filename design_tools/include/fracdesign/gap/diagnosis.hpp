@@ -204,8 +204,9 @@ constexpr double kExplainedShrink = 0.5;
 // or unexplained) and the nominal's
 // misfit structured (its fit cost above kStructuredMisfit x its white cost)
 // is diagnosed again with the controller reading the measured outputs; that
-// second pass is the result when its status is "explained", else the first
-// is, and GapResult::loop_feedback_note says what the other pass gave.
+// second pass is the result when its status is "explained" and the record
+// identifies every parameter of its verdict, else the first is, and
+// GapResult::loop_feedback_note says what the other pass gave.
 GapResult diagnose(const NominalModel& model, const Signals& data, const Signals* validate, const GapOptions& opt);
 
 // result.json (schema "frac.gap", version 1; keys of issue 10 plus details).
