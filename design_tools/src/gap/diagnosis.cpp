@@ -96,7 +96,7 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
     // came out as offset + Coulomb with an offset + negative viscous
     // friction: test GapSitesOffset.the_encoder_alone_at_rest_is_named_from_the_fit_rows).
     const bool found_nothing = st == "no_candidate" || st == "unexplained";
-    const bool structured = first.fit_cost_white > 0 && first.fit_cost_nominal > kStructuredMisfit * first.fit_cost_white;
+    const bool structured = first.fit_cost_white > 0 && structured_misfit(first.fit_cost_nominal, first.fit_cost_white);
     if (!found_nothing || !structured) {
         first.loop_feedback_note = "the controller read the model's outputs (a closed-loop simulation)";
         return first;
@@ -123,10 +123,7 @@ GapResult diagnose(const NominalModel& model, const Signals& data, const Signals
     // fractional damping + a saturation whose upper limit the command never
     // reached + a gain error, "explained" at 88 %; every second-pass verdict
     // that named the drawn effects had all its parameters identified.
-    bool identified = true;
-    for (const std::vector<Identification>& e : second.verdict.identification)
-        for (const Identification& w : e) identified = identified && w.identified();
-    if (second.confidence.status == "explained" && identified) {
+    if (second.confidence.status == "explained" && unidentified_count(second.verdict) == 0) {
         second.loop_feedback_note = "the controller read the measured outputs: with the model's outputs (a closed-loop "
                                     "simulation) the verdict was " + verdict_words(first) +
                                     "; the command the machine got explains the gap";

@@ -91,16 +91,6 @@ bool quantization_within_stated_noise(const FitReport& f, const FitProblem& P)
     return true;
 }
 
-// How many of f's fitted parameters the record does not identify
-// (FitReport::identification).
-size_t unidentified_count(const FitReport& f)
-{
-    size_t n = 0;
-    for (const auto& e : f.identification)
-        for (const Identification& w : e)
-            if (!w.identified()) ++n;
-    return n;
-}
 
 // The verdict's status and its sentence (GapResult::Confidence::status):
 // whether the gap is the sensors' noise, explained by the verdict, only
@@ -380,6 +370,15 @@ void swap_look_alikes(FitProblem& cur, std::vector<double>& theta, FitReport& be
 
 }  // namespace
 
+size_t unidentified_count(const FitReport& f)
+{
+    size_t n = 0;
+    for (const auto& e : f.identification)
+        for (const Identification& w : e)
+            if (!w.identified()) ++n;
+    return n;
+}
+
 // How far a candidate's held-out improvement lies beyond what the sensors'
 // noise alone gives the same change of prediction, in standard deviations of
 // a new draw (GapResult::Confidence::noise_reach; NaN without noise draws).
@@ -563,7 +562,7 @@ void how_far(const std::vector<std::pair<FitReport, EffectSetup>>& singles, cons
     const NominalModel& model = *base_problem.setup->model;
     const double structured = R.fit_cost_nominal - R.fit_cost_white;
     if (R.verdict.effects.empty() && model.initial_state != NominalModel::Start::fitted && E.eval == base_problem.setup &&
-        std::isfinite(R.fit_cost_nominal) && R.fit_cost_nominal > kStructuredMisfit * R.fit_cost_white) {
+        structured_misfit(R.fit_cost_nominal, R.fit_cost_white)) {
         const FitReport* pick = nullptr;
         double best_share = kFitPartShare;
         for (const std::pair<FitReport, EffectSetup>& s : singles) {

@@ -153,6 +153,14 @@ inline constexpr Eigen::Index kMinWindowDiv = 32;
 // left by the first pass; every other one at most 37 %.
 inline constexpr double kStructuredMisfit = 2.0;
 inline constexpr double kExplainedShare = 0.5;
+// Whether the nominal's fit cost is a structured misfit against the white
+// cost (above): the test of the continuation (which.cpp), of a verdict from
+// the fit rows (how_far.cpp) and of the second pass on the measured
+// outputs (diagnosis.cpp).
+inline bool structured_misfit(double nominal_cost, double white_cost)
+{
+    return std::isfinite(nominal_cost) && nominal_cost > kStructuredMisfit * white_cost;
+}
 // The cost the white levels `white_sd` (per compared output, its units)
 // alone give on P's rows.
 double white_cost(const FitProblem& P, const std::vector<double>& white_sd);
@@ -319,6 +327,9 @@ Evaluator held_out(const Baseline& B, const Signals& data, GapResult& R);
 // same change of prediction, in standard deviations of a new draw (NaN
 // without E.noise_residual); GapResult::Confidence::noise_reach.
 double noise_reach(const Evaluator& E, const FitReport& f);
+// How many of f's fitted parameters the record does not identify
+// (FitReport::identification).
+size_t unidentified_count(const FitReport& f);
 // How far: forward selection from the ranked singles; R.verdict, R.confidence.
 void how_far(const std::vector<std::pair<FitReport, EffectSetup>>& singles, const FitProblem& base_problem,
              const Evaluator& E, const GapOptions& opt, GapResult& R);

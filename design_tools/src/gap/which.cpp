@@ -158,7 +158,7 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
     for (const FitReport& r : job_report)
         if (std::isfinite(r.gap)) best2 = std::min(best2, r.gap * r.gap);
     std::vector<size_t> weak;
-    if (std::isfinite(base_cost) && base_cost > kStructuredMisfit * white &&
+    if (structured_misfit(base_cost, white) &&
         best2 - w2 > (1.0 - kExplainedShare) * (g2 - w2))
         for (size_t i = 0; i < jobs.size(); ++i)
             if (!(outcome[i].cost < (1.0 - kContinuationGain) * base_cost) || !(job_report[i].shrink >= opt.margin))
