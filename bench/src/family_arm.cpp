@@ -133,14 +133,28 @@ std::map<std::string, double> draw_parameters(hil_rng* rng)
     return p;
 }
 
+// The move starts at 0.8 s, or at move.t0 where the arm's pre-actuation needs
+// a longer lead (a slow non-minimum-phase zero: draw() sets it from the
+// design's MoveStartTooEarly, as a user would start the move later).
+const double kMoveStart = 0.8;  // [s]
+
+double move_start(const std::map<std::string, double>& p)
+{
+    const auto it = p.find("move.t0");
+    return it == p.end() ? kMoveStart : it->second;
+}
+
 std::string move_spec(const std::map<std::string, double>& p)
 {
-    char b[160];
-    std::snprintf(b, sizeof b, "0:%.17g@0.8+1.0,%.17g@1.9+0.6,%.17g@2.6+0.5", p.at("move.q1"), p.at("move.q2"), p.at("move.q3"));
+    const double t0 = move_start(p);
+    char b[200];
+    std::snprintf(b, sizeof b, "0:%.17g@%.17g+1.0,%.17g@%.17g+0.6,%.17g@%.17g+0.5", p.at("move.q1"), t0, p.at("move.q2"),
+                  t0 + 1.1, p.at("move.q3"), t0 + 1.8);
     return b;
 }
 
-const double kMoveEnd = 3.1;  // [s] end of the last segment of move_spec
+// [s] end of the last segment of move_spec
+double move_end(const std::map<std::string, double>& p) { return move_start(p) + 2.3; }
 
 // ---- the rig run -----------------------------------------------------------
 
@@ -160,7 +174,7 @@ Derived derive(const BenchCase& c)
         design::design_armctrl_for_arm(d.a, design::Move::parse(move_spec(c.plant)), design::FfKind::Inverse, kPost);
     d.ctrl = fracdesign::tables::to_binary(r.d.table);
     d.nominal = design::arm_gap_nominal(d.a);
-    d.duration = kMoveEnd + kPost;
+    d.duration = move_end(c.plant) + kPost;
     return d;
 }
 
@@ -490,7 +504,14 @@ BenchCase draw(const BenchOptions& opt, int id)
         c.truth.clear();
         Signals free;
         try {
-            d = derive(c);
+            try {
+                d = derive(c);
+            } catch (const design::MoveStartTooEarly& e) {
+                // The lead the design asks for, rounded up to 0.1 s with 0.1 s to spare; a design that still
+                // refuses (a table beyond ARMCTRL_FF_MAX samples, a lead beyond the inversion's horizon) is redrawn.
+                c.plant["move.t0"] = std::ceil(e.lead / 0.1 + 1.0 - 1e-9) * 0.1;
+                d = derive(c);
+            }
             free = record(c, d, false);
         } catch (const std::exception& e) {
             why = e.what();

@@ -104,6 +104,19 @@ TEST(ArmCli, bad_moves_and_mixed_options_are_refused)
     out = run_command(kExe + " armctrl --arm " + kArmB + " --move 0:1@0.1+1.5" + c, &st);
     EXPECT_EQ(st, 1) << out;
     EXPECT_NE(out.find("not at rest"), std::string::npos) << out;
+    // ... it states the lead the pre-actuation needs, and that lead is enough: the same move started
+    // 50 ms after it (the playback's first d_i cycles at rest) is accepted
+    const size_t at = out.find("the pre-actuation needs ");
+    ASSERT_NE(at, std::string::npos) << out;
+    const double lead = std::stod(out.substr(at + std::strlen("the pre-actuation needs ")));
+    EXPECT_GT(lead, 0.1) << out;
+    EXPECT_LT(lead, 2.0) << out;
+    {
+        const std::string ok = run_command(kExe + " armctrl --arm " + kArmB + " --move 0:1@" + std::to_string(lead + 0.05) +
+                                               "+1.5 --post 0.2 --out " + (d / "later.bin").string(), &st);
+        EXPECT_EQ(st, 0) << ok;
+        EXPECT_TRUE(fs::exists(d / "later.bin"));
+    }
     // a move faster than the drive's peak torque allows
     out = run_command(kExe + " armctrl --arm " + kArmB + " --move 0:20@1+0.3" + c, &st);
     EXPECT_EQ(st, 1) << out;

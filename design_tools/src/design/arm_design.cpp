@@ -470,10 +470,24 @@ ArmctrlForArm design_armctrl_for_arm(const ArmDocument& a, const Move& mv, FfKin
     double head = 0.0;
     for (long k = 0; k <= std::min<long>(n_ff - 1, -k0 + s.di); ++k) head = std::max(head, std::fabs(d.ff[3][static_cast<size_t>(k)]));
     d.start_tau = head;
-    if (head > kArmctrlRestTol * d.tau_max)
-        throw std::runtime_error("the feedforward is not at rest where the playback starts (|tau_M*| = " + fmt(head) +
-                                 " N m): the pre-actuation needs more than the move's start " + fmt(mv.t_start()) +
-                                 " s; start the move later");
+    if (head > kArmctrlRestTol * d.tau_max) {
+        // The lead the pre-actuation needs: the first sample of the inversion
+        // (from ki, up to 2 s before the move) above the rest tolerance.
+        double lead = mv.t_start() - d.t0;
+        bool bound = false;
+        if (kind != FfKind::Rigid) {
+            const std::vector<double>& u = d.ibffc->u;
+            size_t i = 0;
+            while (i < u.size() && std::fabs(u[i]) <= kArmctrlRestTol * d.tau_max) ++i;
+            bound = i == 0;
+            lead = mv.t_start() - d.ibffc->t[std::min(i, u.size() - 1)];
+        }
+        throw MoveStartTooEarly("the feedforward is not at rest where the playback starts (|tau_M*| = " + fmt(head) +
+                                    " N m, more than " + fmt(kArmctrlRestTol) + " x its peak " + fmt(d.tau_max) +
+                                    " N m): the pre-actuation needs " + (bound ? "more than " : "") + fmt(lead) +
+                                    " s before the move, which starts at " + fmt(mv.t_start()) + " s; start the move later",
+                                lead);
+    }
     d.pre_actuation_start = d.t_motion_end;
     for (long k = 0; k < n_ff; ++k)
         if (std::fabs(d.ff[3][static_cast<size_t>(k)]) > 1e-3 * d.tau_max) {

@@ -49,6 +49,17 @@ struct ArmDesignError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// The inverse feedforward's pre-actuation (the backward-in-time part of the
+// stable inversion, decaying like exp(sigma (t - t_s)) for the slowest
+// non-minimum-phase zero sigma of the arm) is not at rest where the playback
+// starts: the move must start later. `lead` [s] is how long before the move's
+// start the torque first exceeds kArmctrlRestTol x its peak on the inversion's
+// horizon (a lower bound when the horizon itself starts above it).
+struct MoveStartTooEarly : std::runtime_error {
+    MoveStartTooEarly(const std::string& what, double lead_s) : std::runtime_error(what), lead(lead_s) {}
+    double lead;
+};
+
 constexpr int kArmShiftsMax = 7;            // 4 x 7 = 28 beam states: the PLC's LQG holds 32
 constexpr double kWangRatedTorque = 95.7;   // N m, seed 004 Table G.2 x 160 (notes 004a)
 constexpr int kArmctrlLqgNmax = 32;         // plant states the PLC's LQG holds (ARMCTRL_LQG_NMAX, ArmCtrl.h)
