@@ -198,6 +198,11 @@ TEST(GapSitesOffset, the_encoder_alone_at_rest_is_named_from_the_fit_rows)
         EXPECT_NEAR(result_json(r)["verdict"]["params"]["offset_x"].get<double>(), a.offset, 0.05 * std::fabs(a.offset));
         std::printf("axis %d: %s: %s\n", i, r.confidence.status.c_str(), r.confidence.explanation.c_str());
         fit_part += r.confidence.status == "fit_part_only";
+        // A weak verdict the record singles out: the second pass on the measured outputs named other
+        // effects (an offset of the wrong size with Coulomb friction), and the first pass stands.
+        if (r.confidence.status == "partly_explained")
+            EXPECT_NE(r.loop_feedback_note.find("other effects than the first pass singled out"), std::string::npos)
+                << r.loop_feedback_note;
     }
     EXPECT_GE(fit_part, 1);
 }
