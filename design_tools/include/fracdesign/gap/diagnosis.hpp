@@ -201,11 +201,13 @@ constexpr double kExplainedShrink = 0.5;
 
 // With LoopFeedback::automatic, a closed-loop record whose first pass (the
 // controller reads the model's outputs) names nothing (status no_candidate
-// or unexplained) and the nominal's
-// misfit structured (its fit cost above kStructuredMisfit x its white cost)
-// is diagnosed again with the controller reading the measured outputs; that
-// second pass is the result when its status is "explained" and the record
-// identifies every parameter of its verdict, else the first is, and
+// or unexplained) or gives a weak verdict (partly_explained, shrink below
+// kExplainedShrink), with the nominal's misfit structured (its fit cost
+// above kStructuredMisfit x its white cost), is diagnosed again with the
+// controller reading the measured outputs. That second pass is the result
+// when its status is "explained", the record identifies every parameter of
+// its verdict, and, after a weak verdict without a look-alike, it names the
+// same effects at the same sites; else the first is, and
 // GapResult::loop_feedback_note says what the other pass gave.
 GapResult diagnose(const NominalModel& model, const Signals& data, const Signals* validate, const GapOptions& opt);
 
