@@ -91,7 +91,6 @@ bool quantization_within_stated_noise(const FitReport& f, const FitProblem& P)
     return true;
 }
 
-
 // The verdict's status and its sentence (GapResult::Confidence::status):
 // whether the gap is the sensors' noise, explained by the verdict, only
 // partly explained, or not explained by any candidate. A `none` is only a
