@@ -192,8 +192,10 @@ def diagnose(model: Union[Model, dict, str, os.PathLike], data: Record, validate
     loop_feedback: what the replayed controller of a closed-loop nominal reads:
       "model" (its outputs: the loop simulated), "measured" (the record's
       columns of them: the plant replayed on the command the machine got) or
-      "auto" (model, then measured when that names no effect or a weak
-      one; docs/gap.md "Loop feedback"), as the CLI's --loop-feedback.
+      "auto" (model; when that does not explain the gap, measured, whose
+      effects also start a second closed-loop fit, and measured is kept when
+      the closed loop names no effect or a weak one; docs/gap.md "Loop
+      feedback"), as the CLI's --loop-feedback.
     command: recorded in result.json and the report (default: the equivalent
       ``fracdesign gap`` command line for path arguments, else a description).
 

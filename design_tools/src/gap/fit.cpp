@@ -131,7 +131,7 @@ FitOutcome refine(FitProblem& P, const std::vector<double>& theta0, int max_iter
 namespace {
 
 // The starts of the set's last effect (after the earlier ones at `init`),
-// screened by cost to the best three when it is a grid.
+// screened by cost to the best three when it is a grid; then its seeded ones.
 std::vector<std::vector<double>> screened_starts(const FitProblem& P, const std::vector<double>& init, size_t keep_n = 3)
 {
     const EffectSetup& last = P.effects.back();
@@ -148,6 +148,11 @@ std::vector<std::vector<double>> screened_starts(const FitProblem& P, const std:
         std::vector<std::vector<double>> keep;
         for (size_t i = 0; i < keep_n; ++i) keep.push_back(starts[c[i].second]);
         starts = keep;
+    }
+    for (const std::vector<double>& st : last.seeded) {
+        std::vector<double> th = init;
+        th.insert(th.end(), st.begin(), st.end());
+        starts.push_back(th);
     }
     return starts;
 }

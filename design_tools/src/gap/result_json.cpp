@@ -137,11 +137,13 @@ nlohmann::json result_json(const GapResult& R)
         j["data"]["loop_feedback"] = R.loop_feedback;
         j["data"]["loop_feedback_note"] = R.loop_feedback_note;
         j["criterion"]["loop_feedback"] =
-            "closed loop: the replayed controller reads the model's outputs; when that names nothing "
-            "(no_candidate, unexplained) or a weak verdict (partly_explained, shrink < 50 %) and the nominal's "
-            "misfit is > 2 x its white-noise cost, the diagnosis is run again with the controller reading the "
-            "measured outputs, and that pass is the result when it explains the gap with every parameter "
-            "identified and, after a weak verdict without a look-alike, names the same effects at the same sites";
+            "closed loop: the replayed controller reads the model's outputs; when that does not explain the gap "
+            "(partly_explained, no_candidate, unexplained) and the nominal's misfit is > 2 x its white-noise cost, "
+            "the diagnosis is run again with the controller reading the measured outputs; the closed-loop fits "
+            "run again also started from that pass's effects, and replace the first pass when they score higher; "
+            "when the closed loop then names nothing or a weak verdict (partly_explained, shrink < 50 %), the "
+            "measured pass is the result when it explains the gap with every parameter identified and, after a "
+            "weak verdict without a look-alike, names the same effects at the same sites";
     }
     j["skipped"] = R.skipped;
     j["seconds"] = R.seconds;

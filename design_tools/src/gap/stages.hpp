@@ -313,10 +313,12 @@ void nested_rule(List& list, ReportOf report_of, Effect contained, Effect contai
 FitReport none_candidate(const GapResult& R);
 // Which: every candidate alone at each of its sites; R.candidates (none
 // included, best first) and R.skipped; returns each effect's best single
-// fit with its set-up, best first.
+// fit with its set-up, best first. Each effect of `seeds` (another pass's
+// verdict) seeds the set-ups of its kind at its site (EffectSetup::seeded).
 std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, const GapOptions& opt,
                                                      const FitContext& ctx, const Baseline& B,
-                                                     const FitProblem& base_problem, const Evaluator& E, GapResult& R);
+                                                     const FitProblem& base_problem, const Evaluator& E, GapResult& R,
+                                                     const std::vector<EffectInstance>& seeds);
 
 // ---- how_far.cpp --------------------------------------------------------------
 

@@ -17,6 +17,31 @@
 namespace fracdesign {
 namespace gap {
 
+namespace {
+
+// Another pass's fitted values of this effect at this site as a start
+// (normalized, inside the bounds): a parameter set from the data (a grid) or
+// held by a nested restriction keeps the set-up's first start. A fit whose
+// cost is rough in its parameters (a series mode in a loop that cycles at
+// the clip: its grid's best starts lie in other basins) then also starts
+// where the other replay found the effect.
+void seed(EffectSetup& es, const std::vector<EffectInstance>& seeds)
+{
+    for (const EffectInstance& s : seeds) {
+        if (s.kind != es.kind || s.site != es.site || s.coupling != es.coupling) continue;
+        if (s.params.size() != es.spec.size() || es.starts.empty()) continue;
+        std::vector<double> th = es.starts.front();
+        for (size_t j = 0; j < th.size(); ++j) {
+            const ParamSpec& p = es.spec[j];
+            if (p.fixed || p.held || p.mirror >= 0 || !std::isfinite(s.params[j]) || p.scale == 0) continue;
+            th[j] = std::min(std::max(s.params[j] / p.scale, p.lo), p.hi);
+        }
+        es.seeded.push_back(th);
+    }
+}
+
+}  // namespace
+
 FitReport none_candidate(const GapResult& R)
 {
     FitReport none;
@@ -30,7 +55,8 @@ FitReport none_candidate(const GapResult& R)
 
 std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, const GapOptions& opt,
                                                      const FitContext& ctx, const Baseline& B,
-                                                     const FitProblem& base_problem, const Evaluator& E, GapResult& R)
+                                                     const FitProblem& base_problem, const Evaluator& E, GapResult& R,
+                                                     const std::vector<EffectInstance>& seeds)
 {
     const std::vector<double>& coupling_Sq = B.coupling_Sq;
     // The single fits are independent: they run on opt.threads workers
@@ -74,6 +100,7 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
                 FitContext cc = ctx;
                 cc.coupling = site.second;
                 sensor_variants.push_back({ie, descriptor(e).setup(cc, Site::sensor)});
+                seed(sensor_variants.back().setup, seeds);
             } else if (needs_velocity(e) && model.velocity < 0) {
                 R.skipped.push_back(effect_name(e) + (model.couplings.empty() ? "" : " at the force input") +
                                     ": the model names no velocity output (gap.velocity)");
@@ -84,7 +111,8 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
                     for (const EffectSetup& v : descriptor(e).nested(ctx, site.first)) variants.push_back(v);
             }
         }
-        for (const EffectSetup& es : variants) {
+        for (EffectSetup& es : variants) {
+            seed(es, seeds);
             if (es.starts.empty()) {
                 R.skipped.push_back(effect_name(e) + (e == Effect::quantization
                                                            ? ": no output's data lie on a lattice coarser than its noise"

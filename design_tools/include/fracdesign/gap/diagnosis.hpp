@@ -200,15 +200,19 @@ constexpr double kFitPartShare = 0.8;
 constexpr double kExplainedShrink = 0.5;
 
 // With LoopFeedback::automatic, a closed-loop record whose first pass (the
-// controller reads the model's outputs) names nothing (status no_candidate
-// or unexplained) or gives a weak verdict (partly_explained, shrink below
-// kExplainedShrink), with the nominal's misfit structured (its fit cost
-// above kStructuredMisfit x its white cost), is diagnosed again with the
-// controller reading the measured outputs. That second pass is the result
-// when its status is "explained", the record identifies every parameter of
-// its verdict, and, after a weak verdict without a look-alike, it names the
+// controller reads the model's outputs) is not explained (status
+// partly_explained, no_candidate or unexplained), with the nominal's misfit
+// structured (its fit cost above kStructuredMisfit x its white cost), is
+// diagnosed again with the controller reading the measured outputs. When
+// that second pass names effects, the first pass runs again with its fits
+// also started where the second found them, and replaces the first when its
+// verdict scores higher (the same closed-loop replay, the same nominal gap).
+// Then, if the first pass names nothing or a weak verdict (partly_explained,
+// shrink below kExplainedShrink), the second pass is the result when its
+// status is "explained", the record identifies every parameter of its
+// verdict, and, after a weak verdict without a look-alike, it names the
 // same effects at the same sites; else the first is, and
-// GapResult::loop_feedback_note says what the other pass gave.
+// GapResult::loop_feedback_note says what the other passes gave.
 GapResult diagnose(const NominalModel& model, const Signals& data, const Signals* validate, const GapOptions& opt);
 
 // result.json (schema "frac.gap", version 1; keys of issue 10 plus details).

@@ -129,6 +129,10 @@ struct EffectSetup {
     std::vector<ParamSpec> spec;
     std::vector<std::vector<double>> starts;  // normalized start vectors
     bool screen = false;                      // rank starts by cost, refine the best three
+    // Normalized starts from another pass's fit of this effect at this site
+    // (diagnosis.cpp: the loop-feedback pass's verdict); refined besides the
+    // screened ones, never screened out.
+    std::vector<std::vector<double>> seeded = {};
 };
 // The data scales that effects' bounds and starts are taken from.
 struct FitContext {
