@@ -72,7 +72,7 @@ bool same_effects(const std::vector<EffectInstance>& a, const std::vector<Effect
 {
     if (a.size() != b.size()) return false;
     for (size_t i = 0; i < a.size(); ++i)
-        if (a[i].kind != b[i].kind || a[i].site != b[i].site || a[i].coupling != b[i].coupling) return false;
+        if (!same_place(a[i], b[i])) return false;
     return true;
 }
 
@@ -85,8 +85,7 @@ std::vector<EffectInstance> new_starts(const std::vector<EffectInstance>& a, con
     for (const EffectInstance& e : b) {
         bool known = false;
         for (const EffectInstance& f : a) {
-            if (f.kind != e.kind || f.site != e.site || f.coupling != e.coupling || f.params.size() != e.params.size())
-                continue;
+            if (!same_place(f, e) || f.params.size() != e.params.size()) continue;
             bool close = true;
             for (size_t j = 0; j < e.params.size(); ++j)
                 close = close && std::fabs(e.params[j] - f.params[j]) <= 0.02 * std::fabs(f.params[j]) + 1e-12;

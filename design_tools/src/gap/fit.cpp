@@ -135,12 +135,13 @@ namespace {
 std::vector<std::vector<double>> screened_starts(const FitProblem& P, const std::vector<double>& init, size_t keep_n = 3)
 {
     const EffectSetup& last = P.effects.back();
-    std::vector<std::vector<double>> starts;
-    for (const std::vector<double>& st : last.starts) {
+    const auto after_init = [&init](const std::vector<double>& st) {
         std::vector<double> th = init;
         th.insert(th.end(), st.begin(), st.end());
-        starts.push_back(th);
-    }
+        return th;
+    };
+    std::vector<std::vector<double>> starts;
+    for (const std::vector<double>& st : last.starts) starts.push_back(after_init(st));
     if (last.screen && starts.size() > keep_n) {
         std::vector<std::pair<double, size_t>> c;
         for (size_t i = 0; i < starts.size(); ++i) c.push_back({P.cost(starts[i]), i});
@@ -149,11 +150,7 @@ std::vector<std::vector<double>> screened_starts(const FitProblem& P, const std:
         for (size_t i = 0; i < keep_n; ++i) keep.push_back(starts[c[i].second]);
         starts = keep;
     }
-    for (const std::vector<double>& st : last.seeded) {
-        std::vector<double> th = init;
-        th.insert(th.end(), st.begin(), st.end());
-        starts.push_back(th);
-    }
+    for (const std::vector<double>& st : last.seeded) starts.push_back(after_init(st));
     return starts;
 }
 

@@ -33,6 +33,14 @@ inline const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 inline double rms(const Eigen::VectorXd& v) { return v.size() ? std::sqrt(v.squaredNorm() / double(v.size())) : 0.0; }
 
+// The same effect at the same place: kind, site and coupling (each side an
+// EffectInstance or an EffectSetup).
+template <class A, class B>
+bool same_place(const A& a, const B& b)
+{
+    return a.kind == b.kind && a.site == b.site && a.coupling == b.coupling;
+}
+
 // ---- spectrum.cpp -------------------------------------------------------------
 
 // Decades [0, 0.1), [0.1, 1), ... up to the Nyquist frequency 0.5/Ts [Hz].

@@ -28,8 +28,7 @@ namespace {
 void seed(EffectSetup& es, const std::vector<EffectInstance>& seeds)
 {
     for (const EffectInstance& s : seeds) {
-        if (s.kind != es.kind || s.site != es.site || s.coupling != es.coupling) continue;
-        if (s.params.size() != es.spec.size() || es.starts.empty()) continue;
+        if (!same_place(s, es) || s.params.size() != es.spec.size() || es.starts.empty()) continue;
         std::vector<double> th = es.starts.front();
         for (size_t j = 0; j < th.size(); ++j) {
             const ParamSpec& p = es.spec[j];
