@@ -12,6 +12,9 @@
 # Environment: LIMIT_FACTOR (default 0.8) the lowered limit as a share of the unlimited run's peak command;
 # GYRO_NOISE (default: the document's sensors.imu_noise) the rig's gyro noise std in rad/s.
 set -euo pipefail
+# A step that fails under set -e names itself (a CI run once failed here with no output at all: the
+# gap-plc runs sent their stderr nowhere).
+trap 'st=$?; echo "FAIL arm_closed_loop.sh line $LINENO (exit $st): $BASH_COMMAND"' ERR
 fd=$1 bench=$2 gapplc=$3 arm=$4 move=$5 out=$6
 here=$(cd "$(dirname "$0")" && pwd)
 py=/usr/bin/python3
@@ -61,8 +64,11 @@ if sys.argv[5] == "1":
                          "imu_rate": math.sqrt(float(sys.argv[4]) ** 2 + 1e-6 / 12)}
 json.dump(n, open(sys.argv[2], "w"), indent=1)
 PY
-"$gapplc" --model nominal_run.json --data clean/record.csv --out gap_clean > gap_clean.txt 2>/dev/null
-"$gapplc" --model nominal_run.json --data coulomb/record.csv --out gap_coulomb > gap_coulomb.txt 2>/dev/null
+# gap-plc's progress goes to gap_R.err; a refusal or a crash prints it.
+for r in clean coulomb; do
+  set +e; "$gapplc" --model nominal_run.json --data $r/record.csv --out gap_$r > gap_$r.txt 2> gap_$r.err; st=$?; set -e
+  [ $st -eq 0 ] || { echo "FAIL gap-plc on $r/record.csv: exit $st; its stderr (last 20 lines):"; tail -n 20 gap_$r.err; exit 1; }
+done
 # refusals: one line naming the field, exit 1, nothing written
 refuse() {  # refuse NAME EXPECTED-TEXT PROGRAM ARGS...
   local name=$1 want=$2; shift 2
