@@ -275,6 +275,9 @@ TEST(GapVerdict, candidate_fits_give_the_same_result_on_one_and_on_two_threads)
     // Coulomb's without offset (EffectDescriptor::nested), and one per
     // continued fit (which.cpp).
     EXPECT_EQ(lines, 8 + two["data"]["continued_candidates"].get<int>());
+    // Two effects: the forward selection's trial sets, its backward step's
+    // drops and the look-alike swaps ran on the workers too (how_far.cpp).
+    EXPECT_EQ(two["verdict"]["effects"].size(), 2u) << two["verdict"]["effects"].dump();
     one.erase("seconds");
     two.erase("seconds");
     EXPECT_EQ(one.dump(), two.dump());

@@ -258,9 +258,11 @@ Reduced without(const FitProblem& cur, const std::vector<double>& theta, size_t 
 void drop_idle(FitProblem& cur, std::vector<double>& theta, FitReport& best, const Evaluator& E, const GapOptions& opt)
 {
     while (cur.effects.size() > 1) {
+        // Each effect dropped in turn, the refits on the workers (run_jobs), read in the set's order.
+        std::vector<Reduced> tried(cur.effects.size());
+        run_jobs(tried.size(), opt.threads, [&](size_t i) { tried[i] = without(cur, theta, i, E, opt); });
         std::optional<Reduced> pick;
-        for (size_t i = 0; i < cur.effects.size(); ++i) {
-            Reduced r = without(cur, theta, i, E, opt);
+        for (Reduced& r : tried) {
             const bool earns = best.gap <= (1.0 - opt.margin) * r.report.gap && best.score > r.report.score;
             if (earns) continue;
             if (!pick || r.report.score > pick->report.score) pick = std::move(r);
@@ -349,19 +351,27 @@ void swap_look_alikes(FitProblem& cur, std::vector<double>& theta, FitReport& be
                       const Evaluator& E, const GapOptions& opt)
 {
     for (size_t i = 0; i < cur.effects.size(); ++i) {
+        // Its own single: the set's effects are singles' set-ups (one per
+        // effect, which.cpp), so exactly one is at its place.
         const FitReport* own = nullptr;
         for (const auto& s : singles)
-            if (s.second.kind == cur.effects[i].kind && s.second.site == cur.effects[i].site) own = &s.first;
+            if (same_place(s.second, cur.effects[i])) own = &s.first;
         if (!own) continue;
-        std::optional<Reduced> pick;
+        std::vector<const std::pair<FitReport, EffectSetup>*> by;
         for (const auto& s : singles) {
             if (s.first.effects.size() != 1 || s.first.shrink < own->shrink - opt.margin) continue;
             bool in_set = false;
-            for (const EffectSetup& e : cur.effects) in_set = in_set || (e.kind == s.second.kind && e.site == s.second.site);
+            for (const EffectSetup& e : cur.effects) in_set = in_set || same_place(e, s.second);
             if (in_set || holds_term_of(cur.effects, s.second, i)) continue;
-            Reduced r = replaced(cur, theta, i, from_single(s, base_problem, true), E, opt);
-            if (r.report.score > best.score && (!pick || r.report.score > pick->report.score)) pick = std::move(r);
+            by.push_back(&s);
         }
+        // The swaps' fits on the workers (run_jobs), read in the singles' order.
+        std::vector<Reduced> tried(by.size());
+        run_jobs(by.size(), opt.threads,
+                 [&](size_t k) { tried[k] = replaced(cur, theta, i, from_single(*by[k], base_problem, true), E, opt); });
+        std::optional<Reduced> pick;
+        for (Reduced& r : tried)
+            if (r.report.score > best.score && (!pick || r.report.score > pick->report.score)) pick = std::move(r);
         if (!pick) continue;
         pick->adopt(cur, theta, best);
     }
@@ -496,20 +506,26 @@ void how_far(const std::vector<std::pair<FitReport, EffectSetup>>& singles, cons
         std::vector<bool> used(singles.size(), false);
         used[0] = true;
         while (int(cur.effects.size()) < opt.max_effects) {
-            int pick = -1;
-            FitReport pick_rep;
-            std::vector<double> pick_theta;
-            FitProblem pick_prob;
-            int tried = 0;
-            for (size_t i = 0; i < singles.size() && tried < 3; ++i) {
-                if (used[i] || singles[i].first.score <= 0 || holds_term_of(cur.effects, singles[i].second)) continue;
-                ++tried;
+            // The next three singles that may join (not used, scoring, no
+            // term of the set's), each fitted with the set on the workers
+            // (run_jobs); the lowest held-out gap is picked in rank order.
+            std::vector<size_t> next;
+            for (size_t i = 0; i < singles.size() && next.size() < 3; ++i)
+                if (!used[i] && singles[i].first.score > 0 && !holds_term_of(cur.effects, singles[i].second)) next.push_back(i);
+            struct Trial {
+                FitProblem problem;
+                FitOutcome outcome;
+                FitReport report;
+            };
+            std::vector<Trial> trial(next.size());
+            run_jobs(next.size(), opt.threads, [&](size_t n) {
                 // The new effect starts from its single fit, the others from the current set.
-                FitProblem P = cur;
-                const EffectSetup es = from_single(singles[i], base_problem, false);
-                P.effects.push_back(es);
-                FitOutcome o = fit_set(P, theta, opt.max_iterations / 2);
-                FitReport rep = make_report(P, o, E, opt.param_penalty);
+                Trial& t = trial[n];
+                t.problem = cur;
+                const EffectSetup es = from_single(singles[next[n]], base_problem, false);
+                t.problem.effects.push_back(es);
+                t.outcome = fit_set(t.problem, theta, opt.max_iterations / 2);
+                t.report = make_report(t.problem, t.outcome, E, opt.param_penalty);
                 // A symmetric restriction (ParamSpec::mirror) won its single
                 // fit with the others unmodelled; beside them its edges may
                 // part: the released set-up is fitted too, from the same
@@ -519,19 +535,20 @@ void how_far(const std::vector<std::pair<FitReport, EffectSetup>>& singles, cons
                     Q.effects.push_back(*full);
                     FitOutcome q = fit_set(Q, theta, opt.max_iterations / 2);
                     FitReport qrep = make_report(Q, q, E, opt.param_penalty);
-                    if (qrep.score > rep.score) {
-                        P = std::move(Q);
-                        o = std::move(q);
-                        rep = std::move(qrep);
-                    }
+                    if (qrep.score > t.report.score) t = {std::move(Q), std::move(q), std::move(qrep)};
                 }
-                if (pick < 0 || rep.gap < pick_rep.gap) {
-                    pick = int(i);
-                    pick_rep = rep;
-                    pick_theta = o.theta;
-                    pick_prob = P;
+            });
+            int pick = -1;
+            FitReport pick_rep;
+            std::vector<double> pick_theta;
+            FitProblem pick_prob;
+            for (size_t n = 0; n < next.size(); ++n)
+                if (pick < 0 || trial[n].report.gap < pick_rep.gap) {
+                    pick = int(next[n]);
+                    pick_rep = trial[n].report;
+                    pick_theta = trial[n].outcome.theta;
+                    pick_prob = trial[n].problem;
                 }
-            }
             if (pick < 0 || !(pick_rep.gap <= (1.0 - opt.margin) * best.gap) || pick_rep.score <= best.score) break;
             used[size_t(pick)] = true;
             cur = pick_prob;

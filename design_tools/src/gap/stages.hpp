@@ -12,12 +12,14 @@
 //  how_far.cpp     gap before on held-out data, forward selection, the
 //                  verdict's confidence, the traces for the report
 //  fit.cpp         the Ceres fit of an effect set and its FitReport
+//  parallel.cpp    independent fits on the machine's cores (run_jobs)
 //  spectrum.cpp    frequency bands and spectra (on welch_psd)
 //  result_json.cpp result.json
 #pragma once
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <string>
 #include <utility>
@@ -244,6 +246,16 @@ Baseline baseline(const NominalModel& model, const Signals& data, const Signals*
 FitContext fit_context(const Baseline& B, const Signals& data, const GapResult& R);
 // Where: R.bands, R.modes, R.windows.
 void where(const Baseline& B, const NominalModel& model, const Signals& data, GapResult& R);
+
+// ---- parallel.cpp -------------------------------------------------------------
+
+// Runs job(0) .. job(n - 1), independent of each other, on `threads`
+// workers (0: one per core; never more than n). Each job writes only its
+// own slot and the caller reads the slots in index order afterwards, so the
+// outcome does not depend on the thread count or on the order the jobs
+// finish in. The first exception a job throws is rethrown once every worker
+// has ended.
+void run_jobs(size_t n, int threads, const std::function<void(size_t)>& job);
 
 // ---- which.cpp ----------------------------------------------------------------
 

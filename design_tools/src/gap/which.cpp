@@ -3,12 +3,9 @@
 // parallel), scored on the held-out rows and ranked, with the nested
 // Coulomb / Stribeck rule (see stages.hpp, docs/gap.md).
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
 #include <mutex>
 #include <string>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -121,38 +118,21 @@ std::vector<std::pair<FitReport, EffectSetup>> which(const NominalModel& model, 
             jobs.push_back({ie, es});
         }
     }
-    // Runs fit(i) for each listed job on the workers; progress per job.
+    // Runs fit(i) for each listed job on the workers (run_jobs); progress per job.
     const auto run_pool = [&](const std::vector<size_t>& todo, const char* what, auto fit) {
-        std::atomic<size_t> next{0};
         size_t done = 0;
         std::mutex mu;
-        std::exception_ptr failure;
-        auto work = [&]() {
-            for (size_t n = next++; n < todo.size(); n = next++) {
-                const size_t i = todo[n];
-                try {
-                    fit(i);
-                } catch (...) {
-                    std::lock_guard<std::mutex> lk(mu);
-                    if (!failure) failure = std::current_exception();
-                }
-                std::lock_guard<std::mutex> lk(mu);
-                ++done;
-                if (opt.progress) {
-                    const EffectSetup& js = jobs[i].setup;
-                    const std::string name = effect_name(js.kind);
-                    opt.progress("gap: " + std::string(what) + " " + std::to_string(done) + "/" + std::to_string(todo.size()) +
-                                 " candidates: " + name + site_phrase(name, site_name(js.site), site_subject(R, js.site, js.coupling)));
-                }
-            }
-        };
-        const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
-        const size_t nthreads = std::min<size_t>(todo.size(), opt.threads > 0 ? size_t(opt.threads) : size_t(hw));
-        std::vector<std::thread> pool;
-        for (size_t t = 1; t < nthreads; ++t) pool.emplace_back(work);
-        work();
-        for (std::thread& t : pool) t.join();
-        if (failure) std::rethrow_exception(failure);
+        run_jobs(todo.size(), opt.threads, [&](size_t n) {
+            const size_t i = todo[n];
+            fit(i);
+            if (!opt.progress) return;
+            std::lock_guard<std::mutex> lk(mu);
+            ++done;
+            const EffectSetup& js = jobs[i].setup;
+            const std::string name = effect_name(js.kind);
+            opt.progress("gap: " + std::string(what) + " " + std::to_string(done) + "/" + std::to_string(todo.size()) +
+                         " candidates: " + name + site_phrase(name, site_name(js.site), site_subject(R, js.site, js.coupling)));
+        });
     };
     // First pass: every candidate from its starts.
     std::vector<FitOutcome> outcome(jobs.size());
