@@ -512,15 +512,10 @@ void how_far(const std::vector<std::pair<FitReport, EffectSetup>>& singles, cons
             std::vector<size_t> next;
             for (size_t i = 0; i < singles.size() && next.size() < 3; ++i)
                 if (!used[i] && singles[i].first.score > 0 && !holds_term_of(cur.effects, singles[i].second)) next.push_back(i);
-            struct Trial {
-                FitProblem problem;
-                FitOutcome outcome;
-                FitReport report;
-            };
-            std::vector<Trial> trial(next.size());
+            std::vector<Reduced> trial(next.size());
             run_jobs(next.size(), opt.threads, [&](size_t n) {
                 // The new effect starts from its single fit, the others from the current set.
-                Trial& t = trial[n];
+                Reduced& t = trial[n];
                 t.problem = cur;
                 const EffectSetup es = from_single(singles[next[n]], base_problem, false);
                 t.problem.effects.push_back(es);
@@ -538,22 +533,14 @@ void how_far(const std::vector<std::pair<FitReport, EffectSetup>>& singles, cons
                     if (qrep.score > t.report.score) t = {std::move(Q), std::move(q), std::move(qrep)};
                 }
             });
-            int pick = -1;
-            FitReport pick_rep;
-            std::vector<double> pick_theta;
-            FitProblem pick_prob;
-            for (size_t n = 0; n < next.size(); ++n)
-                if (pick < 0 || trial[n].report.gap < pick_rep.gap) {
-                    pick = int(next[n]);
-                    pick_rep = trial[n].report;
-                    pick_theta = trial[n].outcome.theta;
-                    pick_prob = trial[n].problem;
-                }
-            if (pick < 0 || !(pick_rep.gap <= (1.0 - opt.margin) * best.gap) || pick_rep.score <= best.score) break;
-            used[size_t(pick)] = true;
-            cur = pick_prob;
-            theta = pick_theta;
-            best = pick_rep;
+            size_t pick = 0;
+            for (size_t n = 1; n < next.size(); ++n)
+                if (trial[n].report.gap < trial[pick].report.gap) pick = n;
+            if (next.empty() || !(trial[pick].report.gap <= (1.0 - opt.margin) * best.gap) ||
+                trial[pick].report.score <= best.score)
+                break;
+            used[next[pick]] = true;
+            trial[pick].adopt(cur, theta, best);
             drop_idle(cur, theta, best, E, opt);
         }
         if (cur.effects.size() > 1) {
