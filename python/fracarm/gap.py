@@ -133,7 +133,7 @@ class GapResult:
         per_out = next((o for o in outs if name.endswith("_" + o)), None)
         if name.startswith("delay_s"):
             return "s"
-        if name in ("alpha", "gain", "zeta"):
+        if name in ("alpha", "gain", "zeta", "share", "mount"):
             return "1"
         if name == "f_hz":
             return "Hz"
@@ -147,6 +147,8 @@ class GapResult:
             return _unit_of(vel)
         if name == "width" and site == "coupling":
             return "unit(deflection)"
+        if name == "width" and site == "gear":
+            return "unit(position)"
         if name == "c":
             return "%s s^alpha/(%s)" % (_unit_of(u), "unit(deflection)" if site == "coupling" else _unit_of(vel) + " s")
         return _unit_of(u)

@@ -69,6 +69,46 @@ std::vector<double> saturation_grid() { return octave_grid(1.0 / 8, M_SQRT2, 2);
 // Largest integer delay the grid tries: 50 samples or a 20th of the fit record.
 long delay_grid_max(const FitContext& c) { return std::max<long>(1, std::min<long>(50, c.fit_samples / 20)); }
 
+// The gear site's set-up (gear.cpp): [width,] share r, f_hz, zeta. r in
+// [0.02, 0.9] (the load's share of the inertia; at 1 the motor would have
+// none), f over the band the other modes use, zeta <= 0.5, the width from 0
+// (scale: FitContext::Sp). Starts: the largest peaks of the nominal
+// residual and a log grid over the band (`per_decade`), r = 0.3 and 0.6,
+// zeta 0.1, and with a play its width at 1/4 .. 64 Sp (an octave apart),
+// screened by cost.
+EffectSetup gear_setup(Effect e, const FitContext& c, bool play, double per_decade)
+{
+    EffectSetup s{e, Site::gear, 0, {}, {}, true};
+    const double flo = std::max(2.0 / c.fit_seconds, 1e-3), fhi = 0.25 / c.Ts;
+    if (play) s.spec.push_back({c.Sp, 0, kBig, false});
+    s.spec.push_back({1.0, 0.02, 0.9, false});
+    s.spec.push_back({1.0, flo, fhi, false});
+    s.spec.push_back({1.0, 0.005, 0.5, false});
+    std::vector<double> fs = c.residual_peaks_hz;
+    for (double f = flo; f <= fhi; f *= std::pow(10.0, 1.0 / per_decade)) fs.push_back(f);
+    for (double f : fs) {
+        if (f < flo || f > fhi) continue;
+        for (double r : {0.3, 0.6}) {
+            if (!play) {
+                s.starts.push_back({r, f, 0.1});
+                continue;
+            }
+            for (double w = 0.25; w <= 64.0 * (1 + 1e-9); w *= 2.0) s.starts.push_back({w, r, f, 0.1});
+        }
+    }
+    return s;
+}
+
+void apply_gear(const std::vector<double>& p, bool play, ReplayTerms& t)
+{
+    const size_t o = play ? 1 : 0;
+    t.gear = true;
+    t.gear_w = play ? std::fabs(p[0]) : 0.0;
+    t.gear_r = std::min(std::max(p[o], 1e-3), 0.999);
+    t.gear_f = std::max(p[o + 1], 1e-6);
+    t.gear_zeta = p[o + 2];
+}
+
 // Each compared output's model index -> value p[c], into a per-model-output vector.
 void per_model_output(const std::vector<double>& p, const std::vector<int>& compared, size_t first,
                       std::vector<double>& out, bool absolute)
@@ -194,12 +234,16 @@ const std::vector<EffectDescriptor>& catalog()
          }},
         {Effect::backlash, "backlash",
          "a play of total width w on the force input, or in the deflection of a declared coupling (e.g. a gear between a "
-         "motor-side encoder and the load)", false,
-         {Site::force_input, Site::coupling}, "small reversing moves around a standstill, load side measured",
+         "motor-side encoder and the load), or in a compliant gear behind the motor-side sensors of a rigid nominal "
+         "(a load share r of the inertia on a spring of contact frequency f_hz and damping zeta)", false,
+         {Site::force_input, Site::coupling, Site::gear}, "small reversing moves around a standstill, load side measured",
          [](const std::vector<std::string>&, const Units& u, Site site) {
+             if (site == Site::gear)
+                 return std::vector<ParamInfo>{{"width", u.p}, {"share", "1"}, {"f_hz", "Hz"}, {"zeta", "1"}};
              return std::vector<ParamInfo>{{"width", site == Site::coupling ? u.q : u.u}};
          },
          [](const FitContext& c, Site site) {
+             if (site == Site::gear) return gear_setup(Effect::backlash, c, true, 6.0);
              EffectSetup s{Effect::backlash, site, c.coupling, {}, {}, false};
              if (site == Site::coupling) {
                  // Log grid of w / rms(q) from 1/4 to 64, 4 per octave (the contacts
@@ -214,7 +258,9 @@ const std::vector<EffectDescriptor>& catalog()
              return s;
          },
          [](const std::vector<double>& p, Site site, const ReplaySetup&, ReplayTerms& t) {
-             if (site == Site::coupling) {
+             if (site == Site::gear) {
+                 apply_gear(p, true, t);
+             } else if (site == Site::coupling) {
                  t.bl_coupling = t.coupling;
                  t.cbl = std::fabs(p[0]);
              } else {
@@ -293,10 +339,12 @@ const std::vector<EffectDescriptor>& catalog()
          "eta'' + 2 zeta w eta' + w^2 eta = w^2 u; in series at the force input (the plant is driven by eta, unit static "
          "gain) or at the outputs (they see g_c eta'/w, a resonance without static gain); or in one sensor's reading, a "
          "second-order sensor: b'' + 2 zeta w b' + w^2 b = m 2 zeta w y' + w^2 y, the sensor reads b (unit static gain; "
-         "m = 1 a sensor on a compliant mount, the base-excitation transmissibility; m = 0 the sensor's own low-pass)", false,
-         {Site::output, Site::force_input, Site::sensor},
+         "m = 1 a sensor on a compliant mount, the base-excitation transmissibility; m = 0 the sensor's own low-pass); or a compliant gear without play behind the motor-side sensors of a rigid nominal "
+         "(the gear site: a load share r of the inertia on a spring of contact frequency f_hz and damping zeta)", false,
+         {Site::output, Site::force_input, Site::sensor, Site::gear},
          "a frequency sweep over the band where the residual peaks, with a sensor at the actuator and one at the load",
          [](const std::vector<std::string>& o, const Units& u, Site site) {
+             if (site == Site::gear) return std::vector<ParamInfo>{{"share", "1"}, {"f_hz", "Hz"}, {"zeta", "1"}};
              std::vector<ParamInfo> v = {{"f_hz", "Hz"}, {"zeta", "1"}};
              if (site == Site::sensor) v.push_back({"mount", "1"});
              if (site == Site::force_input || site == Site::sensor) return v;
@@ -306,6 +354,8 @@ const std::vector<EffectDescriptor>& catalog()
              return v;
          },
          [](const FitContext& c, Site site) {
+             // At the gear, 12 per decade: like a series mode it moves the loop's own dynamics.
+             if (site == Site::gear) return gear_setup(Effect::unmodelled_mode, c, false, 12.0);
              EffectSetup s{Effect::unmodelled_mode, site, site == Site::sensor ? c.coupling : 0, {}, {}, true};
              const size_t ny = site == Site::output ? c.Sy.size() : 0;
              const double flo = std::max(2.0 / c.fit_seconds, 1e-3), fhi = 0.25 / c.Ts;
@@ -341,6 +391,10 @@ const std::vector<EffectDescriptor>& catalog()
              return s;
          },
          [](const std::vector<double>& p, Site site, const ReplaySetup& s, ReplayTerms& t) {
+             if (site == Site::gear) {
+                 apply_gear(p, false, t);
+                 return;
+             }
              t.f_hz = p[0];
              t.zeta = p[1];
              if (site == Site::force_input) {
@@ -522,7 +576,9 @@ bool same_term(Effect a, Site sa, Effect b, Site sb)
     const auto viscous_pair = [](Effect x, Site sx, Effect y) {
         return x == Effect::fractional_damping && sx == Site::force_input && y == Effect::viscous_friction;
     };
-    return same_term(a, b) || viscous_pair(a, sa, b) || viscous_pair(b, sb, a);
+    // The play in the gear and the gear without play: one gear.
+    const bool gears = sa == Site::gear && sb == Site::gear && a != b;
+    return same_term(a, b) || viscous_pair(a, sa, b) || viscous_pair(b, sb, a) || gears;
 }
 
 std::string site_name(Site s)
@@ -533,6 +589,7 @@ std::string site_name(Site s)
     case Site::output: return "output";
     case Site::mode: return "mode";
     case Site::sensor: return "sensor";
+    case Site::gear: return "gear";
     }
     return "force_input";
 }
@@ -544,6 +601,7 @@ std::string site_phrase(const std::string& effect, const std::string& site, cons
     if (site == "output") return " (at the outputs)";
     if (site == "sensor") return " (in the reading of sensor '" + coupling + "')";
     if (site == "force_input" && effect == "unmodelled_mode") return " (in series at the force input)";
+    if (site == "gear") return " (in a gear behind the motor-side sensors)";
     return "";
 }
 
@@ -557,7 +615,9 @@ std::vector<std::pair<Site, int>> effect_sites(Effect e, const NominalModel& m, 
             for (size_t i = 0; i < compared_outputs; ++i) v.push_back({s, int(i)});
         else if (s == Site::mode)
             for (size_t i = 0; i < plant_modes; ++i) v.push_back({s, int(i)});
-        else
+        else if (s == Site::gear) {
+            if (gear_site(m).ok) v.push_back({s, 0});
+        } else
             v.push_back({s, 0});
     }
     return v;
@@ -581,6 +641,8 @@ Units model_units(const NominalModel& m, const std::vector<std::string>& outputs
     if (m.velocity >= 0) u.v = unit_of(m.outputs[size_t(m.velocity)]);
     for (const Coupling& c : m.couplings) u.qs.push_back(c.unit.empty() ? "[" + c.name + " deflection]" : c.unit);
     if (!u.qs.empty()) u.q = u.qs[0];
+    const GearSite g = gear_site(m);
+    if (g.ok && g.position_output >= 0) u.p = unit_of(m.outputs[size_t(g.position_output)]);
     for (const std::string& o : outputs) u.y.push_back(unit_of(o));
     return u;
 }

@@ -130,6 +130,10 @@ ReplaySetup make_replay_setup(const NominalModel& m, const Signals& data, const 
 
 namespace {
 
+// Sub-steps per sample of the gear site's play: w_g Ts / 12 <= 0.13 up to
+// a quarter of the sampling rate (the candidate's upper frequency bound).
+const int kGearSubsteps = 12;
+
 // Ring buffer holding the last `len` vectors of dimension `dim`.
 struct History {
     std::vector<double> buf;
@@ -370,9 +374,32 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     const Coupling* cb = ibl >= 0 ? &m.couplings[size_t(ibl)] : nullptr;
     const Coupling* cf = ifr >= 0 ? &m.couplings[size_t(ifr)] : nullptr;
     const double ck = cb ? cb->stiffness : 0.0;
-    const double ctb = cb ? cb->twist_s.dot(cb->torque_m) : 0.0;
     const Eigen::Index ns = cb ? Eigen::Index(cb->states.size()) : 0;
     Eigen::VectorXd zs(ns), zp(ns), gs(ns), drive(ns);
+    // The gear site (gear.cpp): z = [q, s], q the motor's lead over the load
+    // in the position state's units, s its rate in the velocity state's;
+    //   q' = kappa s,  s' = a/(1 - r) + (A_jj - 2 zeta w_g) s - (w_g^2/kappa) dz(q),
+    // the contact's linear part stepped exactly (zero-order hold of a over
+    // each sub-step) and the play's -(w_g^2/kappa) clamp(q) by
+    // play_substeps. The sensors read r q on the position state and r s on
+    // the velocity state. From rest in the middle of the play.
+    const bool gear = T.gear;
+    GearSite G;
+    Eigen::MatrixXd g_Phi, g_Gam;
+    Eigen::VectorXd g_z = Eigen::VectorXd::Zero(2), g_drive(2), g_torque(2);
+    Eigen::RowVectorXd g_twist = Eigen::RowVectorXd::Zero(2);
+    double g_k = 0;
+    if (gear) {
+        G = gear_site(m);
+        if (!G.ok) throw std::logic_error("gear site on this model: " + G.why);
+        const double wg = 2 * M_PI * T.gear_f;
+        Eigen::Matrix2d Ag;
+        Ag << 0, G.kappa, -wg * wg / G.kappa, m.Ac(G.j, G.j) - 2 * T.gear_zeta * wg;
+        zoh(Ag, Eigen::MatrixXd::Identity(2, 2), Ts / kGearSubsteps, g_Phi, g_Gam);
+        g_torque = -g_Gam.col(1);
+        g_twist(0) = 1;
+        g_k = wg * wg / G.kappa;
+    }
     // c D^alpha q: libfrac's Grunwald-Letnikov operator of order alpha on the
     // mid-sample deflections; the sample's term is g qmid + y0 with the
     // operator's feedthrough g and free response y0 (fo_gl.h), and qmid is
@@ -459,6 +486,8 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
         ym_true.noalias() = m.C * Eigen::Map<const Eigen::VectorXd>(x.data(), nx);
         if (with_d) ym_true.noalias() += m.D * Eigen::Map<const Eigen::VectorXd>(up.data(), nu);
         for (int i = 0; i < ny; ++i) ytrue[size_t(i)] += mode_gain[size_t(i)] * eta[1] / mode_w;
+        if (gear)
+            for (int i = 0; i < ny; ++i) ytrue[size_t(i)] += T.gear_r * (m.C(i, G.p) * g_z(0) + m.C(i, G.j) * g_z(1));
         if (sensor_out >= 0) {
             const double yk = ytrue[size_t(sensor_out)];
             if (sm_first)
@@ -673,19 +702,18 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
             zp.noalias() -= cb->Phi * zs;
             gs.noalias() = cb->Gamma_inv * zp;
             drive.noalias() = cb->Gamma_m * gs;
-            for (int j = 0; j < cb->substeps; ++j) {
-                zp.noalias() = cb->Phi_m * zs;
-                zp += drive;
-                const double a0 = cb->twist_s.dot(zs), a1 = cb->twist_s.dot(zp);
-                double D = 0;
-                for (int it = 0; it < 3; ++it) {
-                    const double q = 0.5 * (a0 + a1 + ctb * D);
-                    D = -ck * std::min(std::max(q, -0.5 * cbl), 0.5 * cbl);
-                }
-                zs = zp;
-                zs += cb->torque_m * D;
-            }
+            play_substeps(zs, drive, cb->Phi_m, cb->torque_m, cb->twist_s, ck, cbl, cb->substeps);
             for (Eigen::Index i = 0; i < ns; ++i) xn[size_t(cb->states[size_t(i)])] = zs(i);
+        }
+        if (gear) {
+            // The gear's relative motion over the sample, driven by the
+            // nominal's force per inertia at mid-sample (gear.cpp).
+            double acc = 0;
+            for (int i = 0; i < nx; ++i)
+                if (i != G.j) acc += m.Ac(G.j, i) * 0.5 * (x[size_t(i)] + xn[size_t(i)]);
+            for (int l = 0; l < nu; ++l) acc += m.Bc(G.j, l) * up[size_t(l)];
+            g_drive.noalias() = g_Gam.col(1) * (acc / (1 - T.gear_r));
+            play_substeps(g_z, g_drive, g_Phi, g_torque, g_twist, g_k, T.gear_w, kGearSubsteps);
         }
         if (cf) {
             frac_real dummy = 0;

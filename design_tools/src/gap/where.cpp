@@ -102,6 +102,9 @@ FitContext fit_context(const Baseline& B, const Signals& data, const GapResult& 
     ctx.Sv = std::max(rms(nom.v.head(R.fit_samples)), 1e-12);
     ctx.Sf = friction_scale(*B.fit_setup.model, ctx.Su);
     ctx.umax = std::max(nom.u.head(R.fit_samples).cwiseAbs().maxCoeff(), 1e-12);
+    const NominalModel& model = *B.fit_setup.model;
+    const GearSite gear = gear_site(model);
+    if (gear.ok) ctx.Sp = std::fabs(gear.kappa * ctx.Ts * ctx.Sv / model.C(model.velocity, gear.j));
     for (size_t c = 0; c < outs.size(); ++c) {
         const Eigen::VectorXd yc = ymeas.col(Eigen::Index(c)).head(R.fit_samples);
         ctx.Sy.push_back(sigma[c]);

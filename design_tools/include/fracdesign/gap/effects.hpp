@@ -50,8 +50,12 @@ Effect effect_from_name(const std::string& name);  // std::invalid_argument if u
 // second-order sensor: the mount's transmissibility of the true output
 // where the sensor sits on a compliant mount, its own low-pass where the
 // sensor's dynamics are second order, or between the two). The mode shift acts on one resonant mode of the
-// nominal plant (mode_shift.hpp), one site per mode.
-enum class Site { force_input, coupling, output, mode, sensor };
+// nominal plant (mode_shift.hpp), one site per mode. The gear site
+// (gear_site below) is a compliant gear behind the motor-side sensors of a
+// rigid nominal that declares no coupling: a share r of the inertia (the
+// load) on a spring of contact frequency f and damping zeta, with a play of
+// width w in it (backlash) or without (unmodelled_mode).
+enum class Site { force_input, coupling, output, mode, sensor, gear };
 struct EffectInstance {
     Effect kind;
     std::vector<double> params;  // physical values, in the order of param_names()
@@ -71,10 +75,11 @@ bool same_term(Effect a, Effect b);
 // between them with a large Fv and a c of opposite sign, neither identified
 // (an outside-style servo record of viscous friction and a dead zone came
 // out Fv 0.040 (true 0.0055) with c = -0.037 at alpha's 0.95 bound). In a
-// declared coupling (Kelvin-Voigt) the damping is another term.
+// declared coupling (Kelvin-Voigt) the damping is another term. At the gear
+// site, backlash and unmodelled_mode are one gear (with and without its play).
 bool same_term(Effect a, Site sa, Effect b, Site sb);
 // The site's name in result.json: "force_input", "output", "coupling",
-// "mode" or "sensor".
+// "mode", "sensor" or "gear".
 std::string site_name(Site s);
 // How the CLI and the report say where an effect of result.json acts
 // (effect name, site name, coupling name): "" at the force input, else
@@ -91,6 +96,7 @@ struct Units {
     std::string u = "[u]";        // the force input
     std::string v = "[v]";        // the velocity output
     std::string q = "[q]";        // the deflection of the coupling an effect acts in
+    std::string p = "[p]";        // the position state (the gear site's play)
     std::vector<std::string> qs;  // each coupling's deflection (model order)
     std::vector<std::string> y;   // each compared output
 };
@@ -157,6 +163,10 @@ struct FitContext {
     // mode checks (diagnosis.hpp ModeCheck): (f checked, measured peak) [Hz].
     double mode_f_hz = 0, mode_zeta = 0;
     std::vector<std::pair<double, double>> mode_checks;
+    // The gear site's length scale (GearSite): how far the position state
+    // moves in one sample at the rms velocity, kappa Ts Sv / C[v][j]; 0 when
+    // the nominal has no gear site.
+    double Sp = 0;
 };
 
 // The replay's terms (effects.cpp, replay()): what the effects set, the
@@ -183,6 +193,8 @@ struct ReplayTerms {
     int sensor_mode = -1;             // model output whose reading passes through the mode at its sensor (-1: none)
     double sensor_zero = 1.0;         // that mode's zero share: 1 a compliant mount, 0 the sensor's own low-pass
     double f_hz = 1, zeta = 0.1;
+    bool gear = false;                // the gear site (gear_site): its play, load share, frequency, damping
+    double gear_w = 0, gear_r = 0.5, gear_f = 100, gear_zeta = 0.1;
     std::vector<double> mode_gain, offset, step;              // per model output
     Eigen::MatrixXd A, B;             // the plant with a nominal mode moved (mode_shift; empty: the nominal's)
 };
@@ -229,6 +241,28 @@ std::vector<std::pair<Site, int>> effect_sites(Effect e, const NominalModel& m, 
 Units units_at(const Units& u, int coupling);
 // Units of the model's signals as the replay's parameters see them.
 Units model_units(const NominalModel& m, const std::vector<std::string>& outputs);
+
+// The gear site of a nominal (gear.cpp, docs/gap.md "The gear site"): a
+// continuous generator (NominalModel::Ac) whose velocity output
+// (gap.velocity) reads one state j, a position state p with p' = kappa x_j
+// and nothing else, and no declared coupling (a declared one holds its own
+// play). `ok` false, with `why`, where the nominal has no such body.
+struct GearSite {
+    bool ok = false;
+    std::string why;
+    int p = -1, j = -1;   // position and velocity states
+    double kappa = 0;     // p' = kappa x_j
+    int position_output = -1;  // a model output reading p alone (its unit is the play's), or -1
+};
+GearSite gear_site(const NominalModel& m);
+
+// A play of width w in a deflection q = twist . z of a linear block held
+// over `substeps` sub-steps: z+ = Phi z + drive + torque D, D = -k clamp(q,
+// -w/2, w/2) at the sub-step's mid deflection (an implicit trapezoid solved
+// by fixed-point iteration; it contracts while |twist . torque| k / 2 < 1).
+// A coupling's play (replay.cpp) and the gear site's (gear.cpp) step this way.
+void play_substeps(Eigen::VectorXd& z, const Eigen::VectorXd& drive, const Eigen::MatrixXd& Phi,
+                   const Eigen::VectorXd& torque, const Eigen::RowVectorXd& twist, double k, double w, int substeps);
 
 // The data a replay runs on: the nominal model, the exogenous signals taken
 // from the record, the initial state, and the compared outputs.
