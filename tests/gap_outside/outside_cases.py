@@ -730,7 +730,6 @@ def true_params(truth):
     if e is None:
         return {}
     n = e["name"]
-    fam = truth["family"]
     if n == "coulomb_friction":
         return {"Fc": e["Fc"]}
     if n == "stribeck_friction":
@@ -738,7 +737,8 @@ def true_params(truth):
     if n == "viscous_friction":
         return {"Fv": e["Fv"]}
     if n == "backlash":
-        return {"width": e["width"]} if fam in ("arm", "foprocess") else {}
+        # the servo's play is in its gear (the tool's gear site): its width in rad
+        return {"width": e["width"]}
     if n in ("deadzone", "saturation"):
         return {"lower": e["lower"], "upper": e["upper"]}
     if n == "input_delay":
