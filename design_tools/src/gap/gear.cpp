@@ -15,6 +15,7 @@
 // a = the nominal's force per inertia (its acceleration less the viscous
 // term), w_g^2 = k / mu and 2 zeta w_g = c / mu with mu = r (1 - r) J the
 // reduced inertia: w_g is the contact resonance, the gear's mode.
+#include <algorithm>
 #include <cmath>
 
 #include "fracdesign/gap/effects.hpp"
@@ -80,11 +81,16 @@ GearSite gear_site(const NominalModel& m)
     return g;
 }
 
-void play_substeps(Eigen::VectorXd& z, const Eigen::VectorXd& drive, const Eigen::MatrixXd& Phi,
-                   const Eigen::VectorXd& torque, const Eigen::RowVectorXd& twist, double k, double w, int substeps)
+namespace {
+
+// The sub-step loop on any Eigen vector/matrix types: fixed-size 2 for the
+// gear and a two-state coupling (no allocation per sample), dynamic else.
+template <class Vec, class Mat, class Row>
+void play_loop(Vec& z, const Vec& drive, const Mat& Phi, const Vec& torque, const Row& twist, double k, double w,
+               int substeps)
 {
     const double tt = twist.dot(torque);
-    Eigen::VectorXd zp(z.size());
+    Vec zp(z.size());
     for (int s = 0; s < substeps; ++s) {
         zp.noalias() = Phi * z;
         zp += drive;
@@ -97,6 +103,23 @@ void play_substeps(Eigen::VectorXd& z, const Eigen::VectorXd& drive, const Eigen
         z = zp;
         z += torque * D;
     }
+}
+
+}  // namespace
+
+void play_substeps(Eigen::VectorXd& z, const Eigen::VectorXd& drive, const Eigen::MatrixXd& Phi,
+                   const Eigen::VectorXd& torque, const Eigen::RowVectorXd& twist, double k, double w, int substeps)
+{
+    if (z.size() == 2) {
+        Eigen::Vector2d z2 = z;
+        const Eigen::Vector2d d2 = drive, t2 = torque;
+        const Eigen::Matrix2d P2 = Phi;
+        const Eigen::RowVector2d w2 = twist;
+        play_loop(z2, d2, P2, t2, w2, k, w, substeps);
+        z = z2;
+        return;
+    }
+    play_loop(z, drive, Phi, torque, twist, k, w, substeps);
 }
 
 }  // namespace gap

@@ -9,6 +9,7 @@
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "fracdesign/gap/effects.hpp"
+#include "fracdesign/gap/matvec.hpp"
 
 #include "frac/fo_gl.h"
 
@@ -130,9 +131,16 @@ ReplaySetup make_replay_setup(const NominalModel& m, const Signals& data, const 
 
 namespace {
 
-// Sub-steps per sample of the gear site's play: w_g Ts / 12 <= 0.13 up to
-// a quarter of the sampling rate (the candidate's upper frequency bound).
-const int kGearSubsteps = 12;
+// Sub-steps per sample of the gear site's play: each spans at most
+// pi/24 = 0.13 rad of the contact mode (w_g Ts / n <= pi/24), which is 12 at
+// a quarter of the sampling rate (the candidate's upper frequency bound) and
+// 1 below 1/48 of it. Without a play (w = 0) the contact is linear and
+// stepped exactly (zero-order hold), so one step per sample.
+int gear_substeps(double wg, double Ts, double w)
+{
+    if (w <= 0) return 1;
+    return int(std::min(64.0, std::max(1.0, std::ceil(wg * Ts / (M_PI / 24) - 1e-9))));
+}
 
 // Ring buffer holding the last `len` vectors of dimension `dim`.
 struct History {
@@ -389,13 +397,15 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     Eigen::VectorXd g_z = Eigen::VectorXd::Zero(2), g_drive(2), g_torque(2);
     Eigen::RowVectorXd g_twist = Eigen::RowVectorXd::Zero(2);
     double g_k = 0;
+    int g_n = 1;
     if (gear) {
         G = gear_site(m);
         if (!G.ok) throw std::logic_error("gear site on this model: " + G.why);
         const double wg = 2 * M_PI * T.gear_f;
         Eigen::Matrix2d Ag;
         Ag << 0, G.kappa, -wg * wg / G.kappa, m.Ac(G.j, G.j) - 2 * T.gear_zeta * wg;
-        zoh(Ag, Eigen::MatrixXd::Identity(2, 2), Ts / kGearSubsteps, g_Phi, g_Gam);
+        g_n = gear_substeps(wg, Ts, T.gear_w);
+        zoh(Ag, Eigen::MatrixXd::Identity(2, 2), Ts / g_n, g_Phi, g_Gam);
         g_torque = -g_Gam.col(1);
         g_twist(0) = 1;
         g_k = wg * wg / G.kappa;
@@ -481,10 +491,9 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     // channel's own effects); between readings it repeats its last reading.
     std::vector<double> held_sens(m.holds.size(), 0.0), held_raw(m.holds.size(), 0.0);
     auto plant_outputs = [&](bool with_d, Eigen::Index k) {
-        // y = C x (+ D u), Eigen's vectorised products (column-major).
-        Eigen::Map<Eigen::VectorXd> ym_true(ytrue.data(), ny);
-        ym_true.noalias() = m.C * Eigen::Map<const Eigen::VectorXd>(x.data(), nx);
-        if (with_d) ym_true.noalias() += m.D * Eigen::Map<const Eigen::VectorXd>(up.data(), nu);
+        // y = C x (+ D u), column by column (matvec.hpp).
+        matvec(m.C, x.data(), ytrue.data(), false);
+        if (with_d) matvec(m.D, up.data(), ytrue.data(), true);
         for (int i = 0; i < ny; ++i) ytrue[size_t(i)] += mode_gain[size_t(i)] * eta[1] / mode_w;
         if (gear)
             for (int i = 0; i < ny; ++i) ytrue[size_t(i)] += T.gear_r * (m.C(i, G.p) * g_z(0) + m.C(i, G.j) * g_z(1));
@@ -667,14 +676,13 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
         tr.u_static(k) = static_in;
         tr.v(k) = v;
         {
-            // x(k+1) = A x + B u (+ the series mode's correction): Eigen's
-            // vectorised matrix-vector products, column by column (A is
-            // column-major; a row-wise loop strides through it).
-            Eigen::Map<Eigen::VectorXd> xnm(xn.data(), nx);
-            xnm.noalias() = A * Eigen::Map<const Eigen::VectorXd>(x.data(), nx);
-            xnm.noalias() += B * Eigen::Map<const Eigen::VectorXd>(up.data(), nu);
-            if (series) xnm += Eigen::Map<const Eigen::VectorXd>(series_corr.data(), nx);
-            if (!dfrac.empty()) xnm.noalias() += Bfrac * Eigen::Map<const Eigen::VectorXd>(dfrac.data(), nu);
+            // x(k+1) = A x + B u (+ the series mode's correction), column by
+            // column (matvec.hpp; A is column-major).
+            matvec(A, x.data(), xn.data(), false);
+            matvec(B, up.data(), xn.data(), true);
+            if (series)
+                for (int i = 0; i < nx; ++i) xn[size_t(i)] += series_corr[size_t(i)];
+            if (!dfrac.empty()) matvec(Bfrac, dfrac.data(), xn.data(), true);
         }
         for (int c = 0; c < ncp; ++c) {
             tr.twists(k, c) = twist_of(m.couplings[size_t(c)], x);
@@ -713,7 +721,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
                 if (i != G.j) acc += m.Ac(G.j, i) * 0.5 * (x[size_t(i)] + xn[size_t(i)]);
             for (int l = 0; l < nu; ++l) acc += m.Bc(G.j, l) * up[size_t(l)];
             g_drive.noalias() = g_Gam.col(1) * (acc / (1 - T.gear_r));
-            play_substeps(g_z, g_drive, g_Phi, g_torque, g_twist, g_k, T.gear_w, kGearSubsteps);
+            play_substeps(g_z, g_drive, g_Phi, g_torque, g_twist, g_k, T.gear_w, g_n);
         }
         if (cf) {
             frac_real dummy = 0;

@@ -8,6 +8,7 @@
 // "limits" stage (pipeline.cpp).
 #include <stdexcept>
 
+#include "fracdesign/gap/matvec.hpp"
 #include "fracdesign/gap/nominal.hpp"
 #include "kinds.hpp"
 
@@ -20,7 +21,7 @@ class LinearLaw final : public Controller {
 public:
     LinearLaw(Eigen::MatrixXd A, Eigen::MatrixXd B, Eigen::MatrixXd C, Eigen::MatrixXd D, int nr)
         : A_(std::move(A)), B_(std::move(B)), C_(std::move(C)), D_(std::move(D)), nr_(nr),
-          x_(Eigen::VectorXd::Zero(A_.rows())), w_(B_.cols()), u_(C_.rows())
+          x_(Eigen::VectorXd::Zero(A_.rows())), xn_(A_.rows()), w_(B_.cols()), u_(C_.rows())
     {
     }
     std::unique_ptr<Controller> clone() const override { return std::make_unique<LinearLaw>(*this); }
@@ -37,11 +38,11 @@ public:
     void step(const double* r, const double* y, double* u) override
     {
         load(r, y);
-        u_.noalias() = C_ * x_;
-        u_.noalias() += D_ * w_;
-        Eigen::VectorXd xn = A_ * x_;
-        xn.noalias() += B_ * w_;
-        x_.swap(xn);
+        matvec(C_, x_.data(), u_.data(), false);
+        matvec(D_, w_.data(), u_.data(), true);
+        matvec(A_, x_.data(), xn_.data(), false);
+        matvec(B_, w_.data(), xn_.data(), true);
+        x_.swap(xn_);
         for (Eigen::Index i = 0; i < u_.size(); ++i) u[i] = u_(i);
     }
     bool small_signal(Eigen::MatrixXd& A, Eigen::MatrixXd& B, Eigen::MatrixXd& C, Eigen::MatrixXd& D) const override
@@ -61,7 +62,7 @@ private:
     }
     Eigen::MatrixXd A_, B_, C_, D_;
     int nr_;
-    Eigen::VectorXd x_, w_, u_;
+    Eigen::VectorXd x_, xn_, w_, u_;  // xn_: the step's next state (no allocation per sample)
 };
 
 }  // namespace
