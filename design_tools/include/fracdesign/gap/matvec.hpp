@@ -4,8 +4,11 @@
 // once per sample, thousands of times per fit: at a servo's two or three
 // states Eigen's general product spends more on its dispatch than on the
 // arithmetic (perf: 30 % of a servo diagnosis). So for 2 to 8 rows and up to
-// 8 columns the product is a plain loop; larger models (an arm's 48 states)
-// and single rows (Eigen takes a dot product there) keep Eigen's kernels.
+// 8 columns the product is a plain loop. Up to 64 rows and 127 columns (an
+// arm's 48 states, where the product is half of a diagnosis) it runs in
+// blocks of 16 rows held in registers, in AVX2 where the CPU has it
+// (matvec.cpp, chosen at run time). Single rows (Eigen takes a dot product
+// there) and larger blocks keep Eigen's kernels.
 //
 // Invariant: the result is bit-identical to Eigen 3.4's column-major gemv
 // (GeneralMatrixVector.h, without FMA contraction): per row the products
@@ -21,18 +24,25 @@
 namespace fracdesign {
 namespace gap {
 
+// y[i] = (add ? y[i] : 0) + sum_j M(i, j) x[j], the sum over j in order from
+// zero; for r > 8, c < 128 (matvec.cpp).
+void matvec_mid(const double* M, long r, long c, const double* x, double* y, bool add);
+
 // y = M x (add: y += M x); x has M.cols() entries, y M.rows(); y must not alias x.
 inline void matvec(const Eigen::MatrixXd& M, const double* x, double* y, bool add)
 {
     const Eigen::Index r = M.rows(), c = M.cols();
     if (r >= 2 && r <= 8 && c <= 8) {
-        double acc[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-        const double* col = M.data();
-        for (Eigen::Index j = 0; j < c; ++j, col += r) {
-            const double xj = x[j];
-            for (Eigen::Index i = 0; i < r; ++i) acc[i] += col[i] * xj;
+        const double* m = M.data();
+        for (Eigen::Index i = 0; i < r; ++i) {
+            double sum = 0.0;
+            for (Eigen::Index j = 0; j < c; ++j) sum += m[j * r + i] * x[j];
+            y[i] = (add ? y[i] : 0.0) + sum;
         }
-        for (Eigen::Index i = 0; i < r; ++i) y[i] = (add ? y[i] : 0.0) + acc[i];
+        return;
+    }
+    if (r > 8 && r <= 64 && c < 128) {
+        matvec_mid(M.data(), long(r), long(c), x, y, add);
         return;
     }
     Eigen::Map<Eigen::VectorXd> ym(y, r);
