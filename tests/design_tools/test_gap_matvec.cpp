@@ -1,6 +1,6 @@
 // test_gap_matvec.cpp - matvec.hpp's invariant: y (+)= M x is bit-identical
 // to Eigen's product on every path (the 2..8-row loop, the 9..64-row blocks
-// in AVX2 or plain, and Eigen's own for single rows and larger blocks), for
+// in AVX2 and without it, and Eigen's own for single rows and larger blocks), for
 // y = M x and y += M x. A reordered sum (the first version added column by
 // column) fails here; it changed two servo-bench verdicts (docs/gap.md
 // "Threads and progress").
@@ -28,7 +28,7 @@ TEST(GapMatvec, is_bit_identical_to_eigens_product_on_every_path)
     auto draw = [&]() { return mant(rng) * std::pow(10.0, expo(rng)); };
     const std::vector<int> rows = {1, 2, 3, 5, 8, 9, 15, 16, 17, 31, 48, 50, 64, 65, 100};
     const std::vector<int> cols = {1, 2, 3, 7, 8, 9, 48, 127, 128, 200};
-    int checked = 0;
+    int checked = 0, portable = 0;
     for (int r : rows)
         for (int c : cols) {
             Eigen::MatrixXd M(r, c);
@@ -42,6 +42,17 @@ TEST(GapMatvec, is_bit_identical_to_eigens_product_on_every_path)
             std::vector<double> got_set(size_t(r), 123.0), got_add(y0.data(), y0.data() + r);
             matvec(M, x.data(), got_set.data(), false);
             matvec(M, x.data(), got_add.data(), true);
+            // The mid-size path without AVX2 (what a CPU without it runs).
+            if (r > 8 && r <= 64 && c < 128) {
+                std::vector<double> p_set(size_t(r), 123.0), p_add(y0.data(), y0.data() + r);
+                fracdesign::gap::matvec_mid_portable(M.data(), r, c, x.data(), p_set.data(), false);
+                fracdesign::gap::matvec_mid_portable(M.data(), r, c, x.data(), p_add.data(), true);
+                for (int i = 0; i < r; ++i) {
+                    ASSERT_TRUE(same_bits(p_set[size_t(i)], ref_set(i))) << r << "x" << c << " portable y = M x, row " << i;
+                    ASSERT_TRUE(same_bits(p_add[size_t(i)], ref_add(i))) << r << "x" << c << " portable y += M x, row " << i;
+                }
+                ++portable;
+            }
             for (int i = 0; i < r; ++i) {
                 ASSERT_TRUE(same_bits(got_set[size_t(i)], ref_set(i)))
                     << r << "x" << c << " y = M x, row " << i << ": " << got_set[size_t(i)] << " vs " << ref_set(i);
@@ -51,6 +62,7 @@ TEST(GapMatvec, is_bit_identical_to_eigens_product_on_every_path)
             ++checked;
         }
     EXPECT_EQ(checked, int(rows.size() * cols.size()));
+    EXPECT_EQ(portable, 8 * 8);  // rows 9..64: 8 sizes; columns < 128: 8 sizes
 }
 
 // A reordered sum is not the same: the check above can fail (column by

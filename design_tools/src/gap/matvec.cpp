@@ -30,17 +30,9 @@ inline void rows_block(const double* M, long r, long c, const double* x, double*
         out = s;
 }
 
-inline void mid_body(const double* M, long r, long c, const double* x, double* y, bool add)
-{
-    long i0 = 0;
-    for (; i0 + 16 <= r; i0 += 16) rows_block<16>(M + i0, r, c, x, y + i0, add);
-    for (; i0 + 4 <= r; i0 += 4) rows_block<4>(M + i0, r, c, x, y + i0, add);
-    for (; i0 < r; ++i0) rows_block<1>(M + i0, r, c, x, y + i0, add);
-}
-
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 // 16 rows in four 256-bit registers; mul then add (no FMA), each row's sum
-// in column order as mid_body's.
+// in column order as matvec_mid_portable's.
 __attribute__((target("avx2"))) inline __m256d out4(const double* y, __m256d s, bool add)
 {
     return add ? _mm256_add_pd(_mm256_loadu_pd(y), s) : s;
@@ -84,7 +76,15 @@ void matvec_mid(const double* M, long r, long c, const double* x, double* y, boo
         return;
     }
 #endif
-    mid_body(M, r, c, x, y, add);
+    matvec_mid_portable(M, r, c, x, y, add);
+}
+
+void matvec_mid_portable(const double* M, long r, long c, const double* x, double* y, bool add)
+{
+    long i0 = 0;
+    for (; i0 + 16 <= r; i0 += 16) rows_block<16>(M + i0, r, c, x, y + i0, add);
+    for (; i0 + 4 <= r; i0 += 4) rows_block<4>(M + i0, r, c, x, y + i0, add);
+    for (; i0 < r; ++i0) rows_block<1>(M + i0, r, c, x, y + i0, add);
 }
 
 }  // namespace gap

@@ -134,8 +134,10 @@ namespace {
 // Sub-steps per sample of the gear site's play: each spans at most
 // pi/24 = 0.13 rad of the contact mode (w_g Ts / n <= pi/24), which is 12 at
 // a quarter of the sampling rate (the candidate's upper frequency bound) and
-// 1 below 1/48 of it. Without a play (w = 0) the contact is linear and
-// stepped exactly (zero-order hold), so one step per sample.
+// 1 below 1/48 of it (the 1e-9 keeps the band's top at 12, where
+// w_g Ts / (pi/24) is 12 up to rounding). Without a play (w = 0) the
+// contact is linear and stepped exactly (zero-order hold), so one step per
+// sample.
 int gear_substeps(double wg, double Ts, double w)
 {
     if (w <= 0) return 1;
@@ -491,7 +493,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     // channel's own effects); between readings it repeats its last reading.
     std::vector<double> held_sens(m.holds.size(), 0.0), held_raw(m.holds.size(), 0.0);
     auto plant_outputs = [&](bool with_d, Eigen::Index k) {
-        // y = C x (+ D u), column by column (matvec.hpp).
+        // y = C x (+ D u) (matvec.hpp: Eigen's sums, without its dispatch).
         matvec(m.C, x.data(), ytrue.data(), false);
         if (with_d) matvec(m.D, up.data(), ytrue.data(), true);
         for (int i = 0; i < ny; ++i) ytrue[size_t(i)] += mode_gain[size_t(i)] * eta[1] / mode_w;
@@ -676,8 +678,8 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
         tr.u_static(k) = static_in;
         tr.v(k) = v;
         {
-            // x(k+1) = A x + B u (+ the series mode's correction), column by
-            // column (matvec.hpp; A is column-major).
+            // x(k+1) = A x + B u (+ the series mode's correction), by
+            // matvec.hpp (Eigen's sums, without its dispatch).
             matvec(A, x.data(), xn.data(), false);
             matvec(B, up.data(), xn.data(), true);
             if (series)

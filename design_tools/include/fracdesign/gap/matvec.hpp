@@ -27,6 +27,9 @@ namespace gap {
 // y[i] = (add ? y[i] : 0) + sum_j M(i, j) x[j], the sum over j in order from
 // zero; for r > 8, c < 128 (matvec.cpp).
 void matvec_mid(const double* M, long r, long c, const double* x, double* y, bool add);
+// The same without AVX2: what matvec_mid runs on a CPU without it (and what
+// the tests check on one with it).
+void matvec_mid_portable(const double* M, long r, long c, const double* x, double* y, bool add);
 
 // y = M x (add: y += M x); x has M.cols() entries, y M.rows(); y must not alias x.
 inline void matvec(const Eigen::MatrixXd& M, const double* x, double* y, bool add)
