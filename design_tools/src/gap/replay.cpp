@@ -131,6 +131,31 @@ ReplaySetup make_replay_setup(const NominalModel& m, const Signals& data, const 
 
 namespace {
 
+// sum_j a[j] b[j] (a and b of one length), each term added in the order
+// j = 0, 1, .. to a sum from zero, the order the replay's sums keep (a
+// reordered sum moves fits on fragile closed loops: docs/gap.md, "Threads
+// and progress"). Not inlined, so that the sum stays in a register: inlined
+// into the replay's loop, GCC 12 summed into the stack slot of the velocity
+// the step's lambdas share, a store and a reload per term, which took a
+// quarter of an arm diagnosis (48 states; perf).
+__attribute__((noinline)) double dot(const std::vector<double>& a, const std::vector<double>& b)
+{
+    double s = 0.0;
+    for (size_t j = 0; j < a.size(); ++j) s += a[j] * b[j];
+    return s;
+}
+
+// a1.b1 + a2.b2 + a3.b3 as one running sum over the three, in that order.
+__attribute__((noinline)) double dot3(const std::vector<double>& a1, const std::vector<double>& b1, const std::vector<double>& a2,
+            const std::vector<double>& b2, const std::vector<double>& a3, const std::vector<double>& b3)
+{
+    double s = 0.0;
+    for (size_t j = 0; j < a1.size(); ++j) s += a1[j] * b1[j];
+    for (size_t j = 0; j < a2.size(); ++j) s += a2[j] * b2[j];
+    for (size_t j = 0; j < a3.size(); ++j) s += a3[j] * b3[j];
+    return s;
+}
+
 // Sub-steps per sample of the gear site's play: each spans at most
 // pi/24 = 0.13 rad of the contact mode (w_g Ts / n <= pi/24), which is 12 at
 // a quarter of the sampling rate (the candidate's upper frequency bound) and
@@ -156,13 +181,23 @@ struct History {
         for (int i = 0; i < len; ++i) std::copy(fill, fill + dim, buf.begin() + long(i) * dim);
         head = 0;
     }
+    // Called several times per sample and output: a loop, not memmove, for
+    // the few entries, and no integer division for the common lags (the two
+    // modulos took a fifth of the replay's own time on a servo; perf).
     void push(const double* x)
     {
-        std::copy(x, x + dim, buf.begin() + long(head) * dim);
-        head = (head + 1) % len;
+        double* d = &buf[size_t(head) * size_t(dim)];
+        for (int i = 0; i < dim; ++i) d[i] = x[i];
+        if (++head == len) head = 0;
     }
     // Value pushed `lag` pushes ago (lag 1 = the latest).
-    const double* lagged(int lag) const { return &buf[size_t(((head - lag) % len + len) % len) * size_t(dim)]; }
+    const double* lagged(int lag) const
+    {
+        int i = head - lag;
+        if (i < 0) i += len;
+        if (i < 0 || i >= len) i = ((head - lag) % len + len) % len;  // a lag beyond the ring's length
+        return &buf[size_t(i) * size_t(dim)];
+    }
 };
 
 double tanh_sign(double v, double eps) { return std::tanh(v / eps); }
@@ -574,12 +609,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
             // (friction then moves it by -bv f); computed once, used by both friction steps below.
             double vnext = std::numeric_limits<double>::quiet_NaN();
             auto velocity_next = [&]() {
-                if (std::isnan(vnext)) {
-                    vnext = 0.0;
-                    for (int j = 0; j < nx; ++j) vnext += cvA[size_t(j)] * x[size_t(j)];
-                    for (int l = 0; l < nu; ++l) vnext += cvB[size_t(l)] * up[size_t(l)];
-                    for (int j = 0; j < nx; ++j) vnext += cv[size_t(j)] * series_corr[size_t(j)];
-                }
+                if (std::isnan(vnext)) vnext = dot3(cvA, x, cvB, up, cv, series_corr);
                 return vnext;
             };
             // A smooth Coulomb term b0 tanh(k v) near rest is a damper b0 k, stiff against the
@@ -633,8 +663,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
     };
 
     for (Eigen::Index k = 0; k < N; ++k) {
-        double v = 0;
-        for (int j = 0; j < nx; ++j) v += cv[size_t(j)] * x[size_t(j)];
+        const double v = dot(cv, x);
         if (m.closed_loop) {
             plant_outputs(false, k);
             for (int j = 0; j < nr; ++j) rk[size_t(j)] = s.exo(k, j);
