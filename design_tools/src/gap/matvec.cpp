@@ -1,9 +1,9 @@
 // matvec.cpp - the mid-size block of matvec.hpp: 9 to 64 rows, fewer than
 // 128 columns (Eigen 3.4's gemv sums those in one column block). Rows in
-// blocks of up to 32 whose sums stay in registers over all columns, each row's sum
-// over the columns in order from zero: the same additions as Eigen's kernel
-// (per row, the packet width does not change the order), so the result is
-// bit-identical whichever path runs. The AVX2 clone is chosen at run time
+// blocks of up to 32 whose sums stay in registers over all columns, each
+// row's sum over the columns in order from zero: the same additions as
+// Eigen's kernel (per row, the packet width does not change the order), so
+// the result is bit-identical whichever path runs. The AVX2 clone is chosen at run time
 // (__builtin_cpu_supports); neither clone contracts to FMA (no -mfma, and
 // the target attribute names AVX2 only).
 #include "fracdesign/gap/matvec.hpp"

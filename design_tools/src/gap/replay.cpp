@@ -131,28 +131,18 @@ ReplaySetup make_replay_setup(const NominalModel& m, const Signals& data, const 
 
 namespace {
 
-// sum_j a[j] b[j] (a and b of one length), each term added in the order
-// j = 0, 1, .. to a sum from zero, the order the replay's sums keep (a
-// reordered sum moves fits on fragile closed loops: docs/gap.md, "Threads
-// and progress"). Not inlined, so that the sum stays in a register: inlined
-// into the replay's loop, GCC 12 summed into the stack slot of the velocity
-// the step's lambdas share, a store and a reload per term, which took a
-// quarter of an arm diagnosis (48 states; perf).
-__attribute__((noinline)) double dot(const std::vector<double>& a, const std::vector<double>& b)
+// s0 + sum_j a[j] b[j] (a and b of one length), each term added in the
+// order j = 0, 1, .. to the running sum from s0, the order the replay's sums
+// keep (a reordered sum moves fits on fragile closed loops: docs/gap.md,
+// "Threads and progress"); chained, dot(c, d, dot(a, b)) is one running sum
+// over both. Not inlined, so that the sum stays in a register: inlined into
+// the replay's loop, GCC 12 summed into the stack slot of the velocity the
+// step's lambdas share, a store and a reload per term, which took a quarter
+// of an arm diagnosis (48 states; perf).
+__attribute__((noinline)) double dot(const std::vector<double>& a, const std::vector<double>& b, double s0 = 0.0)
 {
-    double s = 0.0;
+    double s = s0;
     for (size_t j = 0; j < a.size(); ++j) s += a[j] * b[j];
-    return s;
-}
-
-// a1.b1 + a2.b2 + a3.b3 as one running sum over the three, in that order.
-__attribute__((noinline)) double dot3(const std::vector<double>& a1, const std::vector<double>& b1, const std::vector<double>& a2,
-            const std::vector<double>& b2, const std::vector<double>& a3, const std::vector<double>& b3)
-{
-    double s = 0.0;
-    for (size_t j = 0; j < a1.size(); ++j) s += a1[j] * b1[j];
-    for (size_t j = 0; j < a2.size(); ++j) s += a2[j] * b2[j];
-    for (size_t j = 0; j < a3.size(); ++j) s += a3[j] * b3[j];
     return s;
 }
 
@@ -609,7 +599,7 @@ ReplayTrace replay(const ReplaySetup& s, const std::vector<EffectInstance>& effe
             // (friction then moves it by -bv f); computed once, used by both friction steps below.
             double vnext = std::numeric_limits<double>::quiet_NaN();
             auto velocity_next = [&]() {
-                if (std::isnan(vnext)) vnext = dot3(cvA, x, cvB, up, cv, series_corr);
+                if (std::isnan(vnext)) vnext = dot(cv, series_corr, dot(cvB, up, dot(cvA, x)));
                 return vnext;
             };
             // A smooth Coulomb term b0 tanh(k v) near rest is a damper b0 k, stiff against the
